@@ -1,0 +1,21 @@
+// Whole-body quantities recorded at output times: energies, linear momentum, extreme Jacobians.
+#pragma once
+
+#include "matpoint/explicit/simulation.hpp"
+
+#include <vector>
+
+namespace matpoint {
+
+template <int D> struct Diagnostics {
+  double kinetic_energy = 0.0;  // 1/2 sum M_p |V_p|^2
+  double strain_energy = 0.0;   // sum V0_p W(F_p)
+  Vec<D> momentum = Vec<D>::Zero();
+  double min_jacobian = 1.0, max_jacobian = 1.0;
+  std::vector<double> body_kinetic, body_strain, body_mass;
+  std::vector<Vec<D>> body_momentum;
+};
+
+template <int D> Diagnostics<D> measure_diagnostics(const Simulation<D>& sim, int body_count);
+
+}  // namespace matpoint

@@ -1,0 +1,30 @@
+// The time history of a run (one sample per output time), kept in memory for the checks and
+// written as history.csv.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace matpoint {
+
+struct HistorySample {
+  double time = 0.0;
+  long step = 0;
+  double kinetic_energy = 0.0, strain_energy = 0.0, external_work = 0.0;
+  std::array<double, 3> momentum{}, external_impulse{};
+  double min_jacobian = 1.0;
+  std::vector<double> body_kinetic, body_strain;
+  std::vector<std::array<double, 3>> body_momentum, body_com_velocity;
+};
+
+struct History {
+  int dim = 2;
+  int body_count = 1;
+  std::vector<HistorySample> samples;
+
+  /// The CSV text: header, then one row per sample (columns documented in docs/output.md).
+  [[nodiscard]] std::string csv() const;
+};
+
+}  // namespace matpoint

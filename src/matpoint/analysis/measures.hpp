@@ -1,0 +1,35 @@
+// Named quantities a run can measure and compare with a reference (input "checks", summary.json).
+#pragma once
+
+#include <array>
+#include <string_view>
+
+namespace matpoint {
+
+struct MeasureInfo {
+  std::string_view name;
+  std::string_view meaning;
+};
+
+inline constexpr std::array<MeasureInfo, 6> kMeasures{{
+    {"max_relative_energy_error",
+     "max over output times of |E(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy"},
+    {"max_relative_momentum_error",
+     "max over output times of |P(t) - P(0) - I_ext(t)| / sum_p m_p |V_p(0)| (I_ext: impulse of gravity)"},
+    {"min_jacobian", "smallest det F of any particle at any output time"},
+    {"final_time", "simulated time reached at the end of the run"},
+    {"vibrating_bar_period_error",
+     "|T_measured - T_exact| / T_exact for a 1-D bar fixed at x = min and free at the other end, "
+     "T_exact = 4 L / sqrt(E / rho), T_measured from the zero crossings of the centre-of-mass velocity"},
+    {"vibrating_bar_com_velocity_error",
+     "max over output times of |v_cm(t) - v_exact(t)| / v_amp, v_exact = v_amp cos(pi c t / (2 L)), "
+     "v_amp = 2 v0 / pi, for the first-mode bar of examples/vibrating-bar-1d"},
+}};
+
+[[nodiscard]] constexpr bool is_known_measure(std::string_view name) {
+  for (const auto& m : kMeasures)
+    if (m.name == name) return true;
+  return false;
+}
+
+}  // namespace matpoint

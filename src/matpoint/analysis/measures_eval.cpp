@@ -1,0 +1,98 @@
+#include "matpoint/analysis/measures_eval.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace matpoint {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double max_relative_energy_error(const History& h) {
+  if (h.samples.empty()) return kNaN;
+  const auto& s0 = h.samples.front();
+  const double e0 = s0.kinetic_energy + s0.strain_energy;
+  double worst = 0.0;
+  for (const auto& s : h.samples) {
+    const double drift = s.kinetic_energy + s.strain_energy - s.external_work - e0;
+    worst = std::max(worst, std::abs(drift) / e0);
+  }
+  return worst;
+}
+
+double max_relative_momentum_error(const History& h, double scale) {
+  if (h.samples.empty() || !(scale > 0)) return kNaN;
+  const auto& s0 = h.samples.front();
+  double worst = 0.0;
+  for (const auto& s : h.samples) {
+    double d2 = 0.0;
+    for (int a = 0; a < h.dim; ++a) {
+      const double d = s.momentum[a] - s0.momentum[a] - (s.external_impulse[a] - s0.external_impulse[a]);
+      d2 += d * d;
+    }
+    worst = std::max(worst, std::sqrt(d2) / scale);
+  }
+  return worst;
+}
+
+struct BarData {
+  double v0, c, length;
+};
+
+BarData vibrating_bar(const Spec& spec) {
+  const auto& body = spec.bodies.front();
+  const auto& m = spec.materials[body.material];
+  return {body.sine_amplitude[0], std::sqrt(m.youngs_modulus / m.density), body.max[0] - body.min[0]};
+}
+
+double bar_velocity_error(const Spec& spec, const History& h) {
+  const auto bar = vibrating_bar(spec);
+  const double amplitude = 2.0 * bar.v0 / std::numbers::pi;
+  double worst = 0.0;
+  for (const auto& s : h.samples) {
+    const double exact = vibrating_bar_com_velocity(bar.v0, bar.c, bar.length, s.time);
+    worst = std::max(worst, std::abs(s.body_com_velocity[0][0] - exact) / amplitude);
+  }
+  return worst;
+}
+
+double bar_period_error(const Spec& spec, const History& h) {
+  std::vector<double> crossings;
+  for (std::size_t k = 1; k < h.samples.size(); ++k) {
+    const double a = h.samples[k - 1].body_com_velocity[0][0], b = h.samples[k].body_com_velocity[0][0];
+    if ((a > 0) != (b > 0) && a != b) {
+      const double ta = h.samples[k - 1].time, tb = h.samples[k].time;
+      crossings.push_back(ta + (tb - ta) * a / (a - b));
+    }
+  }
+  if (crossings.size() < 2) return kNaN;
+  const double period = 2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const auto bar = vibrating_bar(spec);
+  const double exact = 4.0 * bar.length / bar.c;
+  return std::abs(period - exact) / exact;
+}
+
+}  // namespace
+
+double vibrating_bar_com_velocity(double v0, double wave_speed, double length, double t) {
+  return 2.0 * v0 / std::numbers::pi * std::cos(std::numbers::pi * wave_speed * t / (2.0 * length));
+}
+
+double evaluate_measure(std::string_view name, const Spec& spec, const History& history, double momentum_scale) {
+  if (name == "max_relative_energy_error") return max_relative_energy_error(history);
+  if (name == "max_relative_momentum_error") return max_relative_momentum_error(history, momentum_scale);
+  if (name == "min_jacobian") {
+    double j = std::numeric_limits<double>::infinity();
+    for (const auto& s : history.samples) j = std::min(j, s.min_jacobian);
+    return history.samples.empty() ? kNaN : j;
+  }
+  if (name == "final_time") return history.samples.empty() ? kNaN : history.samples.back().time;
+  if (name == "vibrating_bar_com_velocity_error") return bar_velocity_error(spec, history);
+  if (name == "vibrating_bar_period_error") return bar_period_error(spec, history);
+  return kNaN;
+}
+
+}  // namespace matpoint

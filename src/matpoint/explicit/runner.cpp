@@ -1,0 +1,231 @@
+#include "matpoint/explicit/runner.hpp"
+
+#include "matpoint/analysis/diagnostics.hpp"
+#include "matpoint/analysis/history.hpp"
+#include "matpoint/analysis/measures_eval.hpp"
+#include "matpoint/core/errors.hpp"
+#include "matpoint/core/progress.hpp"
+#include "matpoint/core/version.hpp"
+#include "matpoint/explicit/explicit_step.hpp"
+#include "matpoint/io/atomic_file.hpp"
+#include "matpoint/io/vtk_writer.hpp"
+#include "matpoint/shape/tensor_bases.hpp"
+#include "matpoint/shape/tensor_stencils.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <iomanip>
+#include <sstream>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace matpoint {
+
+namespace {
+
+template <int D> std::array<double, 3> pad(const Vec<D>& v) {
+  std::array<double, 3> out{};
+  for (int a = 0; a < D; ++a) out[a] = v[a];
+  return out;
+}
+
+template <int D> HistorySample sample(const Simulation<D>& sim, int body_count) {
+  const auto d = measure_diagnostics(sim, body_count);
+  HistorySample s;
+  s.time = sim.time;
+  s.step = sim.step;
+  s.kinetic_energy = d.kinetic_energy;
+  s.strain_energy = d.strain_energy;
+  s.external_work = sim.external_work;
+  s.momentum = pad<D>(d.momentum);
+  s.external_impulse = pad<D>(sim.external_impulse);
+  s.min_jacobian = d.min_jacobian;
+  s.body_kinetic = d.body_kinetic;
+  s.body_strain = d.body_strain;
+  for (int b = 0; b < body_count; ++b) {
+    s.body_momentum.push_back(pad<D>(d.body_momentum[b]));
+    s.body_com_velocity.push_back(pad<D>(Vec<D>(d.body_momentum[b] / std::max(d.body_mass[b], 1e-300))));
+  }
+  return s;
+}
+
+nlohmann::json energies_json(const HistorySample& s, int dim) {
+  return {{"time", s.time},
+          {"kinetic_energy", s.kinetic_energy},
+          {"strain_energy", s.strain_energy},
+          {"total_energy", s.kinetic_energy + s.strain_energy},
+          {"external_work", s.external_work},
+          {"momentum", std::vector<double>(s.momentum.begin(), s.momentum.begin() + dim)}};
+}
+
+std::string output_name(long index) {
+  std::ostringstream name;
+  name << "particles_" << std::setw(6) << std::setfill('0') << index << ".vtu";
+  return name.str();
+}
+
+/// Decides which steps write output.
+class OutputSchedule {
+ public:
+  explicit OutputSchedule(const OutputSpec& o) : spec_(o), next_time_(o.every_time) {}
+  bool due(long step, double time, double dt) {
+    if (spec_.every_steps > 0) return step % spec_.every_steps == 0;
+    if (spec_.every_time > 0 && time >= next_time_ - 1e-6 * dt) {
+      while (next_time_ <= time + 1e-6 * dt) next_time_ += spec_.every_time;
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  OutputSpec spec_;
+  double next_time_;
+};
+
+template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunOptions& options) {
+  Simulation<D> sim = build_simulation<D>(spec);  // may throw InputError: nothing written yet
+  const int body_count = static_cast<int>(spec.bodies.size());
+  const double dt = stable_time_step(sim);
+  const auto& out_dir = options.out_dir;
+  std::filesystem::create_directories(out_dir);
+
+  History history{D, body_count, {}};
+  PvdCollection pvd(out_dir / "results.pvd");
+  long outputs = 0;
+  auto record = [&] {
+    history.samples.push_back(sample(sim, body_count));
+    write_file_atomically(out_dir / "history.csv", history.csv());
+    if (spec.output.particles) {
+      const std::string name = output_name(outputs);
+      write_file_atomically(out_dir / name, particles_vtu(sim.particles, spec.output.fields));
+      pvd.add(sim.time, name);
+    }
+    ++outputs;
+  };
+
+  double momentum_scale = 0.0;
+  for (std::size_t p = 0; p < sim.particles.size(); ++p) momentum_scale += sim.particles.mass[p] * sim.particles.v[p].norm();
+
+  ExplicitStepper<D, Stencils> stepper(sim);
+  OutputSchedule schedule(spec.output);
+  Progress progress(options.progress, spec.solver.end_time);
+  record();
+
+  RunResult result;
+  const auto wall_start = std::chrono::steady_clock::now();
+  double step_wall = 0.0, step_cpu = 0.0;
+  long last_recorded_step = 0;
+  const double end_time = spec.solver.end_time;
+  while (sim.time < end_time - 1e-9 * dt && (spec.solver.max_steps == 0 || sim.step < spec.solver.max_steps)) {
+    const double h = std::min(dt, end_time - sim.time);
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
+    try {
+      stepper.step(h);
+    } catch (const NumericalFailure& failure) {
+      result.exit_code = kExitNumerical;
+      result.message = failure.what();
+      break;
+    }
+    step_cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    step_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (schedule.due(sim.step, sim.time, h)) {
+      record();
+      last_recorded_step = sim.step;
+    }
+    progress.update(sim.step, sim.time);
+  }
+  if (result.exit_code == kExitOk && last_recorded_step != sim.step) record();
+  progress.finish(result.exit_code == kExitOk ? "done" : "stopped: numerical failure");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  const double particle_steps = static_cast<double>(sim.particles.size()) * static_cast<double>(sim.step);
+  auto& s = result.summary;
+  s["matpoint_version"] = kVersion;
+  s["title"] = spec.title;
+  s["status"] = result.exit_code == kExitOk ? "ok" : "numerical_failure";
+  s["exit_code"] = result.exit_code;
+  s["message"] = result.message;
+  s["dimension"] = D;
+  s["particles"] = sim.particles.size();
+  s["nodes"] = sim.grid.node_count;
+  s["bodies"] = body_count;
+  s["steps"] = sim.step;
+  s["time_step"] = dt;
+  s["time_reached"] = sim.time;
+#ifdef _OPENMP
+  s["threads"] = omp_get_max_threads();
+#else
+  s["threads"] = 1;
+#endif
+  s["wall_time_seconds"] = wall;
+  s["step_wall_seconds"] = step_wall;
+  s["step_cpu_seconds"] = step_cpu;
+  s["particle_steps_per_second"] = step_wall > 0 ? particle_steps / step_wall : 0.0;
+  s["particle_steps_per_cpu_second"] = step_cpu > 0 ? particle_steps / step_cpu : 0.0;
+  s["outputs"] = outputs;
+  s["initial"] = energies_json(history.samples.front(), D);
+  s["final"] = energies_json(history.samples.back(), D);
+  s["checks"] = nlohmann::json::array();
+  bool all_pass = true;
+  for (const auto& c : spec.checks) {
+    const double measured = evaluate_measure(c.measure, spec, history, momentum_scale);
+    const bool pass = std::isfinite(measured) && std::abs(measured - c.expected) <= c.tolerance;
+    all_pass = all_pass && pass;
+    s["checks"].push_back({{"name", c.name},
+                           {"measure", c.measure},
+                           {"measured", std::isfinite(measured) ? nlohmann::json(measured) : nlohmann::json(nullptr)},
+                           {"expected", c.expected},
+                           {"tolerance", c.tolerance},
+                           {"pass", pass},
+                           {"source", c.source}});
+  }
+  s["checks_pass"] = all_pass;
+  s["input"] = spec.echo;
+  write_file_atomically(out_dir / "summary.json", s.dump(2) + "\n");
+  if (spec.output.plots && !options.scripts_dir.empty() && !draw_plots(out_dir, options.scripts_dir))
+    std::fprintf(stderr, "warning: could not draw plots (needs python3-matplotlib)\n");
+  return result;
+}
+
+template <int D> RunResult run_dim(const Spec& spec, const RunOptions& options) {
+  switch (spec.solver.shape) {
+    case ShapeKind::BSpline2:
+      return run_with<D, TensorStencils<D, QuadraticBSplineBasis>>(spec, options);
+    case ShapeKind::Linear:
+      break;
+  }
+  return run_with<D, TensorStencils<D, LinearBasis>>(spec, options);
+}
+
+}  // namespace
+
+RunResult run_explicit(const Spec& spec, const RunOptions& options) {
+#ifdef _OPENMP
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+#endif
+  switch (spec.grid.dim) {
+    case 1:
+      return run_dim<1>(spec, options);
+    case 3:
+      return run_dim<3>(spec, options);
+    default:
+      return run_dim<2>(spec, options);
+  }
+}
+
+bool draw_plots(const std::filesystem::path& out_dir, const std::filesystem::path& scripts_dir) {
+  const auto script = scripts_dir / "plot_history.py";
+  if (!std::filesystem::exists(script)) return false;
+  // Debian's interpreter first: python3-matplotlib installs there, whatever else is on PATH.
+  const char* python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string command = std::string(python) + " '" + script.string() + "' '" + out_dir.string() + "' > /dev/null";
+  return std::system(command.c_str()) == 0;
+}
+
+}  // namespace matpoint

@@ -1,0 +1,33 @@
+// Runs an explicit simulation from a validated Spec: time loop, output schedule, guards, checks,
+// summary. The basis and dimension are chosen here, once, before any hot loop runs.
+#pragma once
+
+#include "matpoint/io/spec.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace matpoint {
+
+struct RunOptions {
+  std::filesystem::path out_dir = "out";
+  int threads = 0;                 // 0: OpenMP default
+  bool progress = true;            // progress on stderr (a bar on a terminal, log lines otherwise)
+  std::filesystem::path scripts_dir;  // folder of plot_history.py; empty: no plots
+};
+
+struct RunResult {
+  int exit_code = 0;  // 0 ok, 3 numerical failure
+  std::string message;
+  nlohmann::json summary;
+};
+
+/// Throws InputError (before writing anything) when the spec cannot be set up, e.g. an empty body.
+RunResult run_explicit(const Spec& spec, const RunOptions& options);
+
+/// Draws plots/*.png of an output folder with the project's matplotlib script; false on failure.
+bool draw_plots(const std::filesystem::path& out_dir, const std::filesystem::path& scripts_dir);
+
+}  // namespace matpoint

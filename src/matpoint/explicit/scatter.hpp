@@ -1,0 +1,122 @@
+// Particle-to-grid transfers (Nairn 2026 §2.1 tasks 1 and 2): nodal mass, momentum and force.
+//   m_i = sum_p M_p S_pi,  p_i = sum_p M_p S_pi V_p,
+//   f_i = -sum_p V_p sigma_p grad S_pi + sum_p M_p S_pi b          (V_p sigma_p = V0_p tau_p)
+// Race-free with threads: each thread scatters its contiguous block of (cell-sorted) particles
+// into a private band of nodes, and the bands are summed node by node in thread order, so a
+// given thread count always gives the same result.
+#pragma once
+
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/grid/grid_fields.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace matpoint {
+
+enum ScatterFields : unsigned { kScatterMass = 1, kScatterMomentum = 2, kScatterForce = 4 };
+
+/// Per-thread node bands reused from step to step.
+template <int D> struct ScatterWorkspace {
+  struct Band {
+    Index lo = 0, hi = -1;
+    std::vector<double> mass;
+    std::vector<Vec<D>> momentum, force;
+  };
+  std::vector<Band> bands;
+};
+
+namespace detail {
+
+template <int D, unsigned What, class Stencils, class Target>
+void scatter_range(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
+                   const Vec<D>& gravity, std::ptrdiff_t begin, std::ptrdiff_t end, Index offset, Target& out) {
+  for (std::ptrdiff_t p = begin; p < end; ++p) {
+    const double m = particles.mass[p];
+    Vec<D> mv = Vec<D>::Zero();
+    if constexpr ((What & kScatterMomentum) != 0) mv = m * particles.v[p];
+    Mat<D> vs = Mat<D>::Zero();
+    Vec<D> mb = Vec<D>::Zero();
+    if constexpr ((What & kScatterForce) != 0) {
+      vs = particles.volume0[p] * particles.F[p].determinant() * particles.stress[p];
+      mb = m * gravity;
+    }
+    stencils.for_each_node(grid, p, [&](Index node, double N, const Vec<D>& dN) {
+      const Index k = node - offset;
+      if constexpr ((What & kScatterMass) != 0) out.mass[k] += m * N;
+      if constexpr ((What & kScatterMomentum) != 0) out.momentum[k] += N * mv;
+      if constexpr ((What & kScatterForce) != 0) out.force[k] += N * mb - vs * dN;
+    });
+  }
+}
+
+template <int D, unsigned What> void zero_fields(GridFields<D>& f, Index lo, Index hi) {
+  for (Index i = lo; i <= hi; ++i) {
+    if constexpr ((What & kScatterMass) != 0) f.mass[i] = 0.0;
+    if constexpr ((What & kScatterMomentum) != 0) f.momentum[i].setZero();
+    if constexpr ((What & kScatterForce) != 0) f.force[i].setZero();
+  }
+}
+
+}  // namespace detail
+
+/// Recomputes the selected node fields from the particles (the fields not selected are untouched).
+template <unsigned What, int D, class Stencils>
+void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
+                     const Vec<D>& gravity, GridFields<D>& fields, ScatterWorkspace<D>& ws) {
+  const auto n = static_cast<std::ptrdiff_t>(particles.size());
+  int threads = 1;
+#ifdef _OPENMP
+  threads = n <= kParallelMinimum ? 1 : omp_get_max_threads();
+#endif
+  if (threads == 1) {
+    detail::zero_fields<D, What>(fields, 0, grid.node_count - 1);
+    detail::scatter_range<D, What>(grid, stencils, particles, gravity, 0, n, 0, fields);
+    return;
+  }
+  ws.bands.resize(threads);
+  const Index reach = stencils.max_node_offset(grid);
+#pragma omp parallel num_threads(threads)
+  {
+#ifdef _OPENMP
+    const int t = omp_get_thread_num();
+#else
+    const int t = 0;
+#endif
+    const std::ptrdiff_t begin = n * t / threads, end = n * (t + 1) / threads;
+    auto& band = ws.bands[t];
+    band.lo = grid.node_count;
+    band.hi = -1;
+    for (std::ptrdiff_t p = begin; p < end; ++p) {
+      band.lo = std::min(band.lo, stencils.base[p]);
+      band.hi = std::max(band.hi, stencils.base[p] + reach);
+    }
+    const Index width = std::max<Index>(band.hi - band.lo + 1, 0);
+    if constexpr ((What & kScatterMass) != 0) band.mass.assign(width, 0.0);
+    if constexpr ((What & kScatterMomentum) != 0) band.momentum.assign(width, Vec<D>::Zero());
+    if constexpr ((What & kScatterForce) != 0) band.force.assign(width, Vec<D>::Zero());
+    detail::scatter_range<D, What>(grid, stencils, particles, gravity, begin, end, band.lo, band);
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (Index i = 0; i < grid.node_count; ++i) {
+      double m = 0.0;
+      Vec<D> mv = Vec<D>::Zero(), f = Vec<D>::Zero();
+      for (const auto& b : ws.bands) {
+        if (i < b.lo || i > b.hi) continue;
+        if constexpr ((What & kScatterMass) != 0) m += b.mass[i - b.lo];
+        if constexpr ((What & kScatterMomentum) != 0) mv += b.momentum[i - b.lo];
+        if constexpr ((What & kScatterForce) != 0) f += b.force[i - b.lo];
+      }
+      if constexpr ((What & kScatterMass) != 0) fields.mass[i] = m;
+      if constexpr ((What & kScatterMomentum) != 0) fields.momentum[i] = mv;
+      if constexpr ((What & kScatterForce) != 0) fields.force[i] = f;
+    }
+  }
+}
+
+}  // namespace matpoint

@@ -1,0 +1,70 @@
+#include "matpoint/explicit/simulation.hpp"
+
+#include "matpoint/core/errors.hpp"
+#include "matpoint/particles/generators.hpp"
+#include "matpoint/shape/tensor_bases.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace matpoint {
+
+int ghost_layers(ShapeKind shape) {
+  switch (shape) {
+    case ShapeKind::BSpline2:
+      return QuadraticBSplineBasis::ghost_layers;
+    case ShapeKind::Linear:
+      break;
+  }
+  return LinearBasis::ghost_layers;
+}
+
+template <int D> Simulation<D> build_simulation(const Spec& spec) {
+  Simulation<D> sim;
+  Vec<D> origin, h;
+  std::array<int, D> cells{};
+  for (int a = 0; a < D; ++a) {
+    origin[a] = spec.grid.min[a];
+    h[a] = spec.grid.cell_size[a];
+    cells[a] = spec.grid.cells[a];
+  }
+  sim.grid = Grid<D>(origin, h, cells, ghost_layers(spec.solver.shape));
+  sim.fields.resize(sim.grid.node_count);
+
+  for (const auto& m : spec.materials) sim.materials.push_back(make_material(m));
+  std::vector<InputIssue> empty_bodies;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    const auto& body = spec.bodies[b];
+    const auto added = generate_body<D>(body, static_cast<int>(b), spec.materials[body.material], sim.grid, sim.particles);
+    if (added == 0)
+      empty_bodies.push_back({"bodies[" + std::to_string(b) + "].shape", "a shape that holds no particle centre",
+                              "a shape that contains at least one sub-cell centre (enlarge it or refine the grid)"});
+  }
+  if (!empty_bodies.empty()) throw InputError(std::move(empty_bodies));
+  sort_by_cell(sim.grid, sim.particles);
+  update_stress<D>(sim.materials, sim.particles);
+
+  sim.conditions = VelocityConditions<D>(spec.conditions, sim.grid);
+  for (int a = 0; a < D; ++a) sim.gravity[a] = spec.loads.gravity[a];
+  sim.solver = spec.solver;
+  const double heaviest = *std::max_element(sim.particles.mass.begin(), sim.particles.mass.end());
+  sim.mass_floor = spec.solver.mass_tolerance * heaviest;
+  return sim;
+}
+
+template <int D> double stable_time_step(const Simulation<D>& sim) {
+  if (sim.solver.dt) return *sim.solver.dt;
+  double speed = 0.0;
+  for (const auto& m : sim.materials) speed = std::max(speed, wave_speed<D>(m));
+  for (const auto& v : sim.particles.v) speed = std::max(speed, v.norm());
+  return sim.solver.courant * sim.grid.min_cell_size() / speed;
+}
+
+template Simulation<1> build_simulation<1>(const Spec&);
+template Simulation<2> build_simulation<2>(const Spec&);
+template Simulation<3> build_simulation<3>(const Spec&);
+template double stable_time_step<1>(const Simulation<1>&);
+template double stable_time_step<2>(const Simulation<2>&);
+template double stable_time_step<3>(const Simulation<3>&);
+
+}  // namespace matpoint

@@ -1,0 +1,41 @@
+// Simulation: everything an explicit run evolves, built once from a validated Spec.
+#pragma once
+
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/grid/grid_fields.hpp"
+#include "matpoint/grid/velocity_conditions.hpp"
+#include "matpoint/io/spec.hpp"
+#include "matpoint/material/material.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+#include <vector>
+
+namespace matpoint {
+
+template <int D> struct Simulation {
+  Grid<D> grid;
+  GridFields<D> fields;
+  ParticleSet<D> particles;
+  std::vector<Material> materials;
+  VelocityConditions<D> conditions;
+  Vec<D> gravity = Vec<D>::Zero();
+  SolverSpec solver;
+  double mass_floor = 0.0;  // nodes at or below this mass are inactive
+
+  double time = 0.0;
+  long step = 0;
+  double external_work = 0.0;                        // gravity + moving walls, accumulated
+  Vec<D> external_impulse = Vec<D>::Zero();          // gravity + grid conditions, accumulated
+};
+
+/// Grid ghost layers needed by a basis.
+int ghost_layers(ShapeKind shape);
+
+/// Builds grid, particles (cell-sorted, initial stress from F = I), materials and conditions.
+/// Throws InputError for bodies that produce no particle.
+template <int D> Simulation<D> build_simulation(const Spec& spec);
+
+/// Time step: the input's dt, or courant * h_min / max(largest wave speed, largest particle speed).
+template <int D> double stable_time_step(const Simulation<D>& sim);
+
+}  // namespace matpoint

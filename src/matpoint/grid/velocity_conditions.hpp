@@ -1,0 +1,37 @@
+// Grid velocity conditions (Nairn 2026 §2.1 task 2.a, lumped form): after the momentum update a
+// constrained velocity component of a node is set to its prescribed value. Conditions on domain
+// faces include the ghost node layers beyond the face.
+#pragma once
+
+#include "matpoint/core/types.hpp"
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/io/spec.hpp"
+
+#include <vector>
+
+namespace matpoint {
+
+template <int D> class VelocityConditions {
+ public:
+  VelocityConditions() = default;
+  VelocityConditions(const std::vector<VelocityConditionSpec>& specs, const Grid<D>& grid);
+
+  /// Sets every constrained component of v at time t. Where mass is given, adds to `impulse` the
+  /// momentum the constraint injects (m (v_set - v_free)) and to `work` that impulse times the
+  /// prescribed velocity: the work done by a moving wall (zero for fixed ones).
+  void apply(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass = nullptr,
+             Vec<D>* impulse = nullptr, double* work = nullptr) const;
+
+  [[nodiscard]] std::size_t size() const { return entries_.size(); }
+
+ private:
+  struct Entry {
+    Index node;
+    int axis;
+    int function;  // index into functions_, or -1 for zero
+  };
+  std::vector<Entry> entries_;
+  std::vector<TimeFunction> functions_;
+};
+
+}  // namespace matpoint

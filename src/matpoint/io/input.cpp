@@ -1,0 +1,1004 @@
+// The JSON input reader and validator (docs/input.md is the user's reference for every key).
+//
+// Three small pieces do the work:
+//   Issues  collects every problem (path, value, expected) instead of stopping at the first;
+//   Value   one JSON value and its path: typed accessors return std::optional and record an issue
+//           when the value is missing (if required) or of the wrong type or range;
+//   Object  a JSON object with a fixed list of allowed keys: unknown keys are reported on sight.
+// SpecReader walks the input section by section with them and fills a Spec. Defaults are the
+// initial values of the Spec structs (or given with value_or); no exception is used to fill them.
+#include "matpoint/io/input.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <iomanip>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string_view>
+#include <utility>
+
+#include "matpoint/analysis/measures.hpp"
+#include "matpoint/core/errors.hpp"
+#include "matpoint/io/particle_fields.hpp"
+
+namespace matpoint {
+
+double TimeFunction::operator()(double t) const {
+  if (times.empty()) return values.empty() ? 0.0 : values.front();
+  if (t <= times.front()) return values.front();
+  if (t >= times.back()) return values.back();
+  const auto k = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+  const double s = (t - times[k - 1]) / (times[k] - times[k - 1]);  // times[k-1] <= t < times[k]
+  return values[k - 1] + s * (values[k] - values[k - 1]);
+}
+
+namespace {
+
+using nlohmann::json;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::size_t kMaxValueChars = 200;  // longer values are cut in messages
+constexpr double kMaxCells = 1e8;
+constexpr double kCellCountTolerance = 1e-9;  // relative
+constexpr double kInsideTolerance = 1e-12;    // relative to the domain size
+
+// ---------------------------------------------------------------------------------------------
+// Message text
+
+std::string format_number(double x) {
+  std::ostringstream out;
+  out << std::setprecision(12) << x;
+  return out.str();
+}
+
+std::string dump_value(const json& j) {
+  std::string text = j.dump();
+  if (text.size() > kMaxValueChars) text = text.substr(0, kMaxValueChars) + "...";
+  return text;
+}
+
+template <class Range>
+std::string join(const Range& items, bool quoted) {
+  std::string out;
+  for (const auto& item : items) {
+    if (!out.empty()) out += ", ";
+    if (quoted) out += '"';
+    out.append(std::string_view(item));
+    if (quoted) out += '"';
+  }
+  return out;
+}
+
+/// A numeric range with open or closed ends; the default is every finite number.
+struct Bounds {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+
+  [[nodiscard]] bool contains(double x) const {
+    if (!std::isfinite(x)) return false;
+    const bool above = lo_open ? x > lo : x >= lo;
+    const bool below = hi_open ? x < hi : x <= hi;
+    return above && below;
+  }
+  /// " > 0", " in [0, 1)", or "" for any number: appended to "a number" or "numbers".
+  [[nodiscard]] std::string suffix() const {
+    const bool has_lo = lo > -kInf, has_hi = hi < kInf;
+    if (has_lo && has_hi)
+      return " in " + std::string(lo_open ? "(" : "[") + format_number(lo) + ", " + format_number(hi) +
+             (hi_open ? ")" : "]");
+    if (has_lo) return (lo_open ? " > " : " >= ") + format_number(lo);
+    if (has_hi) return (hi_open ? " < " : " <= ") + format_number(hi);
+    return "";
+  }
+};
+
+constexpr Bounds kAnyNumber{};
+constexpr Bounds kPositive{0, kInf, true, false};
+constexpr Bounds kNonNegative{0, kInf, false, false};
+constexpr Bounds kUnitInterval{0, 1, false, false};
+
+std::string numbers_text(int dim, const Bounds& bounds) {
+  const std::string count = dim == 0   ? "1 to 3 numbers"
+                            : dim == 1 ? "1 number"
+                                       : std::to_string(dim) + " numbers";
+  return "an array of " + count + bounds.suffix();
+}
+
+/// A keyword of the input and the value it stands for.
+template <class T>
+struct Named {
+  std::string_view name;
+  T value;
+};
+
+template <class T, std::size_t N>
+std::string choices_text(const std::array<Named<T>, N>& options) {
+  std::vector<std::string_view> names;
+  for (const auto& option : options) names.push_back(option.name);
+  return "one of " + join(names, true);
+}
+
+constexpr std::array<Named<MaterialModel>, 2> kModels{
+    {{"linear_elastic", MaterialModel::LinearElastic}, {"neo_hookean", MaterialModel::NeoHookean}}};
+constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
+    {{"log_j", NeoHookeanVolumetric::LogJ}, {"half_j_squared", NeoHookeanVolumetric::HalfJSquared}}};
+constexpr std::array<Named<BodyShape>, 3> kShapes{
+    {{"box", BodyShape::Box}, {"disk", BodyShape::Disk}, {"polygon", BodyShape::Polygon}}};
+constexpr std::array<Named<ConditionKind>, 3> kConditionKinds{
+    {{"fixed", ConditionKind::Fixed}, {"slip", ConditionKind::Slip}, {"velocity", ConditionKind::Velocity}}};
+constexpr std::array<Named<int>, 6> kFaces{
+    {{"x-", 0}, {"x+", 1}, {"y-", 2}, {"y+", 3}, {"z-", 4}, {"z+", 5}}};  // axis = id / 2, side = id % 2
+constexpr std::array<Named<int>, 3> kAxes{{{"x", 0}, {"y", 1}, {"z", 2}}};
+constexpr std::array<Named<UpdateScheme>, 4> kSchemes{{{"usl", UpdateScheme::USL},
+                                                       {"usf", UpdateScheme::USF},
+                                                       {"musl", UpdateScheme::MUSL},
+                                                       {"usavg", UpdateScheme::USAVG}}};
+constexpr std::array<Named<VelocityTransfer>, 3> kTransfers{
+    {{"flip", VelocityTransfer::FLIP}, {"pic", VelocityTransfer::PIC}, {"blend", VelocityTransfer::Blend}}};
+constexpr std::array<Named<ShapeKind>, 2> kShapeKinds{
+    {{"linear", ShapeKind::Linear}, {"bspline2", ShapeKind::BSpline2}}};
+constexpr std::array<Named<DeformationUpdate>, 2> kDeformationUpdates{
+    {{"exponential", DeformationUpdate::Exponential}, {"linear", DeformationUpdate::Linear}}};
+
+// ---------------------------------------------------------------------------------------------
+// Issues, Value, Object
+
+class Issues {
+ public:
+  void add(std::string path, std::string value, std::string expected) {
+    list_.push_back({std::move(path), std::move(value), std::move(expected)});
+  }
+  [[nodiscard]] std::size_t size() const { return list_.size(); }
+  [[nodiscard]] bool empty() const { return list_.empty(); }
+  [[nodiscard]] std::vector<InputIssue> take() { return std::move(list_); }
+
+ private:
+  std::vector<InputIssue> list_;
+};
+
+/// One JSON value (or the absence of one) at a path. Accessors return nullopt, and record an issue,
+/// when the value is wrong; an absent value gives nullopt and an issue only when it is required.
+class Value {
+ public:
+  Value(const json* j, std::string path, Issues& issues, bool required)
+      : j_(j), path_(std::move(path)), issues_(&issues), required_(required) {}
+
+  [[nodiscard]] bool present() const { return j_ != nullptr; }
+  [[nodiscard]] const json& get() const { return *j_; }
+  [[nodiscard]] const std::string& path() const { return path_; }
+  [[nodiscard]] Issues& issues() const { return *issues_; }
+
+  /// The member `key` of this value when it is an object (absent otherwise).
+  [[nodiscard]] Value member(std::string_view key, bool required) const {
+    const json* child = nullptr;
+    if (j_ != nullptr && j_->is_object()) {
+      const auto it = j_->find(std::string(key));
+      if (it != j_->end()) child = &*it;
+    }
+    return {child, path_.empty() ? std::string(key) : path_ + "." + std::string(key), *issues_, required};
+  }
+
+  /// Element `index` of this value, which must be a present array.
+  [[nodiscard]] Value element(std::size_t index) const {
+    return {&(*j_)[index], path_ + "[" + std::to_string(index) + "]", *issues_, true};
+  }
+
+  /// Records "got <this value>, expected <expected>".
+  void fail(const std::string& expected) const {
+    issues_->add(path_.empty() ? "(root)" : path_, j_ != nullptr ? dump_value(*j_) : "missing", expected);
+  }
+
+  /// True when present; records "missing" when absent and required.
+  [[nodiscard]] bool usable(const std::string& expected) const {
+    if (j_ != nullptr) return true;
+    if (required_) fail(expected);
+    return false;
+  }
+
+  [[nodiscard]] bool expect_object(const std::string& expected) const {
+    if (!usable(expected)) return false;
+    if (j_->is_object()) return true;
+    fail(expected);
+    return false;
+  }
+
+  [[nodiscard]] std::optional<double> number(const Bounds& bounds = kAnyNumber) const {
+    const std::string expected = "a number" + bounds.suffix();
+    if (!usable(expected)) return std::nullopt;
+    if (!j_->is_number() || !bounds.contains(j_->get<double>())) {
+      fail(expected);
+      return std::nullopt;
+    }
+    return j_->get<double>();
+  }
+
+  /// An integer in [lo, hi]; a number with a zero fractional part (such as 1e6) counts as one.
+  [[nodiscard]] std::optional<long> integer(long lo, long hi = LONG_MAX) const {
+    const std::string expected =
+        hi == LONG_MAX ? "an integer >= " + std::to_string(lo)
+                       : "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    if (!usable(expected)) return std::nullopt;
+    const std::optional<long> value = integer_value();
+    if (!value || *value < lo || *value > hi) {
+      fail(expected);
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  [[nodiscard]] std::optional<bool> boolean() const {
+    if (!usable("true or false")) return std::nullopt;
+    if (j_->is_boolean()) return j_->get<bool>();
+    fail("true or false");
+    return std::nullopt;
+  }
+
+  [[nodiscard]] std::optional<std::string> string() const {
+    if (!usable("a non-empty string")) return std::nullopt;
+    if (j_->is_string() && !j_->get_ref<const std::string&>().empty()) return j_->get<std::string>();
+    fail("a non-empty string");
+    return std::nullopt;
+  }
+
+  template <class T, std::size_t N>
+  [[nodiscard]] std::optional<T> choice(const std::array<Named<T>, N>& options) const {
+    const std::string expected = choices_text(options);
+    if (!usable(expected)) return std::nullopt;
+    if (j_->is_string()) {
+      const auto& text = j_->get_ref<const std::string&>();
+      for (const auto& option : options)
+        if (option.name == text) return option.value;
+    }
+    fail(expected);
+    return std::nullopt;
+  }
+
+  /// An array of `dim` numbers within `bounds` (1 to 3 numbers when dim is 0, i.e. unknown),
+  /// returned with zeros past its length.
+  [[nodiscard]] std::optional<Triple> vector(int dim, const Bounds& bounds = kAnyNumber) const {
+    const std::string expected = numbers_text(dim, bounds);
+    if (!usable(expected)) return std::nullopt;
+    const bool size_ok = j_->is_array() && (dim == 0 ? !j_->empty() && j_->size() <= 3
+                                                     : j_->size() == static_cast<std::size_t>(dim));
+    const bool all_ok = size_ok && std::all_of(j_->begin(), j_->end(), [&](const json& x) {
+                          return x.is_number() && bounds.contains(x.get<double>());
+                        });
+    if (!all_ok) {
+      fail(expected);
+      return std::nullopt;
+    }
+    Triple out{};
+    for (std::size_t a = 0; a < j_->size(); ++a) out[a] = (*j_)[a].get<double>();
+    return out;
+  }
+
+  /// The elements of an array with at least `min_size` of them (empty and an issue otherwise).
+  [[nodiscard]] std::vector<Value> elements(const std::string& expected, std::size_t min_size = 0) const {
+    std::vector<Value> out;
+    if (!usable(expected)) return out;
+    if (!j_->is_array() || j_->size() < min_size) {
+      fail(expected);
+      return out;
+    }
+    for (std::size_t i = 0; i < j_->size(); ++i) out.push_back(element(i));
+    return out;
+  }
+
+ private:
+  [[nodiscard]] std::optional<long> integer_value() const {
+    if (j_->is_number_unsigned()) {
+      const auto u = j_->get<std::uint64_t>();
+      if (u > static_cast<std::uint64_t>(LONG_MAX)) return std::nullopt;
+      return static_cast<long>(u);
+    }
+    if (j_->is_number_integer()) return j_->get<long>();
+    if (j_->is_number_float()) {
+      const double x = j_->get<double>();
+      if (!std::isfinite(x) || std::floor(x) != x || std::abs(x) > 9e18) return std::nullopt;
+      return static_cast<long>(x);
+    }
+    return std::nullopt;
+  }
+
+  const json* j_;
+  std::string path_;
+  Issues* issues_;
+  bool required_;
+};
+
+/// A JSON object whose keys must come from a fixed list. Unknown keys are reported when it is made;
+/// a missing (required) or non-object value is reported once, and the Object is then not valid:
+/// its members read as absent and record nothing, so one mistake gives one issue.
+class Object {
+ public:
+  Object(const Value& value, std::initializer_list<std::string_view> keys)
+      : value_(value), keys_(keys), valid_(value.expect_object("an object with the keys: " + keys_text())) {
+    if (!valid_) return;
+    for (const auto& [key, child] : value.get().items())
+      if (!allowed(key)) value.member(key, false).fail("one of the keys: " + keys_text());
+  }
+
+  [[nodiscard]] bool valid() const { return valid_; }
+  [[nodiscard]] const Value& value() const { return value_; }
+  [[nodiscard]] bool has(std::string_view key) const { return member(key, false).present(); }
+  [[nodiscard]] Value required(std::string_view key) const { return member(key, true); }
+  [[nodiscard]] Value optional(std::string_view key) const { return member(key, false); }
+
+  /// Records that `key` is missing (for rules about combinations of keys).
+  void missing(std::string_view key, const std::string& expected) const {
+    if (valid_) value_.member(key, true).fail(expected);
+  }
+
+ private:
+  [[nodiscard]] Value member(std::string_view key, bool required) const {
+    assert(allowed(key) && "read a key that is not in the Object's key list");
+    if (!valid_) return {nullptr, value_.path(), value_.issues(), false};
+    return value_.member(key, required);
+  }
+  [[nodiscard]] bool allowed(std::string_view key) const {
+    return std::find(keys_.begin(), keys_.end(), key) != keys_.end();
+  }
+  [[nodiscard]] std::string keys_text() const { return join(keys_, false); }
+
+  Value value_;
+  std::vector<std::string_view> keys_;
+  bool valid_;
+};
+
+template <class T, class U>
+void set_if(T& target, const std::optional<U>& value) {
+  if (value) target = static_cast<T>(*value);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parsing: JSON syntax and repeated keys
+
+/// A parser callback that reports keys given twice in one object (nlohmann::json keeps the last).
+class RepeatedKeyFinder {
+ public:
+  explicit RepeatedKeyFinder(Issues& issues) : issues_(issues) {}
+
+  bool on_event(json::parse_event_t event, const json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        frames_.push_back({true, {}, 0, {}});
+        break;
+      case json::parse_event_t::array_start:
+        frames_.push_back({false, {}, 0, {}});
+        break;
+      case json::parse_event_t::key:
+        on_key(parsed.get<std::string>());
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        element_done();
+        break;
+      case json::parse_event_t::value:
+        element_done();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool is_object;
+    std::string key;             // current key (objects)
+    std::size_t index;           // current index (arrays)
+    std::set<std::string> keys;  // keys seen so far (objects)
+  };
+
+  void on_key(const std::string& key) {
+    Frame& top = frames_.back();
+    top.key = key;
+    if (!top.keys.insert(key).second)
+      issues_.add(path(), "a repeated key", "each key at most once in an object");
+  }
+  void element_done() {
+    if (!frames_.empty() && !frames_.back().is_object) ++frames_.back().index;
+  }
+  [[nodiscard]] std::string path() const {
+    std::string out;
+    for (const auto& frame : frames_)
+      out += frame.is_object ? (out.empty() ? "" : ".") + frame.key : "[" + std::to_string(frame.index) + "]";
+    return out;
+  }
+
+  Issues& issues_;
+  std::vector<Frame> frames_;
+};
+
+/// Parses the text (comments allowed); a syntax error becomes an issue and nullopt.
+std::optional<json> parse_json(const std::string& text, Issues& issues) {
+  RepeatedKeyFinder finder(issues);
+  const json::parser_callback_t callback = [&finder](int /*depth*/, json::parse_event_t event, json& parsed) {
+    return finder.on_event(event, parsed);
+  };
+  try {
+    return json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const json::exception& e) {
+    std::string what = e.what();  // "[json.exception.parse_error.101] parse error at line 3, column 7: ..."
+    if (const auto end = what.find("] "); what.starts_with("[json.exception") && end != std::string::npos)
+      what = what.substr(end + 2);
+    issues.add("(json)", what, "valid JSON (comments allowed)");
+    return std::nullopt;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The input format, section by section
+
+class SpecReader {
+ public:
+  explicit SpecReader(Issues& issues) : issues_(issues) {}
+
+  Spec read(const json& root_json) {
+    const Value root(&root_json, "", issues_, true);
+    const Object top(root, {"title", "grid", "materials", "bodies", "boundary_conditions", "loads", "solver",
+                            "output", "checks"});
+    if (!top.valid()) return std::move(spec_);
+    set_if(spec_.title, top.optional("title").string());
+    read_grid(Object(top.required("grid"), {"dim", "min", "max", "cell_size"}));
+    read_materials(top.required("materials"));
+    read_bodies(top.required("bodies"));
+    read_conditions(top.optional("boundary_conditions"));
+    read_loads(Object(top.optional("loads"), {"gravity"}));
+    read_solver(Object(top.required("solver"),
+                       {"scheme", "transfer", "position_alpha", "flip_fraction", "shape",
+                        "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance"}));
+    read_output(
+        Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields"}));
+    read_checks(top.optional("checks"));
+    return std::move(spec_);
+  }
+
+ private:
+  // --- grid ---
+
+  void read_grid(const Object& grid) {
+    const std::size_t issues_before = issues_.size();
+    const auto dim = grid.required("dim").integer(1, 3);
+    dim_ = static_cast<int>(dim.value_or(0));  // 0: unknown, vectors below then take 1 to 3 numbers
+    const auto lo = grid.required("min").vector(dim_);
+    const auto hi = grid.required("max").vector(dim_);
+    const auto cell_size = read_cell_size(grid.required("cell_size"));
+    if (!dim || !lo || !hi || !cell_size) return;
+    GridSpec& g = spec_.grid;
+    g.dim = dim_;
+    g.min = *lo;
+    g.max = *hi;
+    g.cell_size = *cell_size;
+    for (int a = 0; a < dim_; ++a)
+      if (!(g.max[a] > g.min[a])) {
+        grid.required("max").fail(numbers_text(dim_, kAnyNumber) + ", each greater than grid.min's");
+        return;
+      }
+    read_cell_counts(grid.required("cell_size"));
+    grid_ok_ = issues_.size() == issues_before;
+  }
+
+  /// A number (the same in every direction) or a vector, all > 0.
+  std::optional<Triple> read_cell_size(const Value& v) const {
+    const std::string expected = "a number > 0 or " + numbers_text(dim_, kPositive);
+    if (!v.usable(expected)) return std::nullopt;
+    if (v.get().is_number()) {
+      const auto h = v.number(kPositive);
+      if (!h) return std::nullopt;
+      Triple out{};
+      for (int a = 0; a < std::max(dim_, 1); ++a) out[a] = *h;
+      return out;
+    }
+    if (!v.get().is_array()) {
+      v.fail(expected);
+      return std::nullopt;
+    }
+    return v.vector(dim_, kPositive);
+  }
+
+  /// cells = (max - min) / cell_size: a whole number >= 1 per direction, at most kMaxCells in all.
+  void read_cell_counts(const Value& cell_size) {
+    GridSpec& g = spec_.grid;
+    Triple counts{};
+    double total = 1;
+    for (int a = 0; a < dim_; ++a) {
+      const double n = (g.max[a] - g.min[a]) / g.cell_size[a];
+      counts[a] = std::round(n);
+      if (counts[a] < 1 || std::abs(n - counts[a]) > kCellCountTolerance * counts[a]) {
+        cell_size.fail("cell_size dividing (max - min) into a whole number of cells");
+        return;
+      }
+      total *= counts[a];
+    }
+    if (total > kMaxCells) {
+      cell_size.fail("at most 1e8 cells");
+      return;
+    }
+    for (int a = 0; a < dim_; ++a) g.cells[a] = static_cast<int>(counts[a]);
+  }
+
+  // --- materials ---
+
+  void read_materials(const Value& list) {
+    const auto items = list.elements("a non-empty array of material objects", 1);
+    names_complete_ = !items.empty();
+    for (const auto& item : items) spec_.materials.push_back(read_material(item));
+  }
+
+  MaterialSpec read_material(const Value& v) {
+    const Object m(v, {"name", "model", "density", "E", "nu", "lambda", "mu", "volumetric"});
+    MaterialSpec out;
+    if (!m.valid()) {
+      names_complete_ = false;
+      return out;
+    }
+    read_material_name(m.required("name"), out);
+    const auto model = m.required("model").choice(kModels);
+    set_if(out.model, model);
+    set_if(out.density, m.required("density").number(kPositive));
+    read_elasticity(m, out);
+    const Value volumetric = m.optional("volumetric");
+    if (model == MaterialModel::LinearElastic && volumetric.present())
+      volumetric.fail("no \"volumetric\" key for a linear_elastic material (only neo_hookean has one)");
+    else
+      set_if(out.volumetric, volumetric.choice(kVolumetric));
+    return out;
+  }
+
+  void read_material_name(const Value& v, MaterialSpec& out) {
+    const auto name = v.string();
+    if (!name) {
+      names_complete_ = false;
+      return;
+    }
+    for (const auto& other : spec_.materials)
+      if (other.name == *name) {
+        v.fail("a name not used by another material");
+        return;
+      }
+    out.name = *name;
+  }
+
+  /// Exactly one pair: E and nu, or lambda and mu; the other pair is computed from it.
+  static void read_elasticity(const Object& m, MaterialSpec& out) {
+    const bool young = m.has("E") || m.has("nu");
+    const bool lame = m.has("lambda") || m.has("mu");
+    if (young && lame)
+      m.optional(m.has("lambda") ? "lambda" : "mu")
+          .fail("either E and nu, or lambda and mu, not keys of both pairs");
+    else if (young)
+      read_young(m, out);
+    else if (lame)
+      read_lame(m, out);
+    else
+      m.missing("E", "E and nu, or lambda and mu");
+  }
+
+  static void read_young(const Object& m, MaterialSpec& out) {
+    const auto E = m.required("E").number(kPositive);
+    const auto nu = m.required("nu").number({-1, 0.5, true, true});
+    if (!E || !nu) return;
+    out.youngs_modulus = *E;
+    out.poisson_ratio = *nu;
+    out.lambda = *E * *nu / ((1 + *nu) * (1 - 2 * *nu));
+    out.mu = *E / (2 * (1 + *nu));
+  }
+
+  static void read_lame(const Object& m, MaterialSpec& out) {
+    const auto lambda = m.required("lambda").number();
+    const auto mu = m.required("mu").number(kPositive);
+    if (!lambda || !mu) return;
+    if (*lambda + 2 * *mu / 3 <= 0) {  // the bulk modulus must be positive
+      m.required("lambda").fail("a number > -2 mu / 3 = " + format_number(-2 * *mu / 3) +
+                                " (a positive bulk modulus)");
+      return;
+    }
+    out.lambda = *lambda;
+    out.mu = *mu;
+    out.youngs_modulus = *mu * (3 * *lambda + 2 * *mu) / (*lambda + *mu);
+    out.poisson_ratio = *lambda / (2 * (*lambda + *mu));
+  }
+
+  // --- bodies ---
+
+  void read_bodies(const Value& list) {
+    const auto items = list.elements("a non-empty array of body objects", 1);
+    for (std::size_t i = 0; i < items.size(); ++i) spec_.bodies.push_back(read_body(items[i], i));
+  }
+
+  BodySpec read_body(const Value& v, std::size_t index) {
+    const Object b(v, {"name", "material", "shape", "particles_per_cell", "velocity", "velocity_sine"});
+    BodySpec out;
+    out.name = "body" + std::to_string(index);
+    if (!b.valid()) return out;
+    set_if(out.name, b.optional("name").string());
+    read_body_material(b.required("material"), out);
+    read_shape(b.required("shape"), out);
+    set_if(out.particles_per_cell, b.optional("particles_per_cell").integer(1, 10));
+    set_if(out.velocity, b.optional("velocity").vector(dim_));
+    read_sine(Object(b.optional("velocity_sine"), {"amplitude", "wave_vector", "phase"}), out);
+    return out;
+  }
+
+  void read_body_material(const Value& v, BodySpec& out) const {
+    const auto name = v.string();
+    if (!name || !names_complete_) return;  // an unnamed material is reported already
+    for (std::size_t k = 0; k < spec_.materials.size(); ++k)
+      if (spec_.materials[k].name == *name) {
+        out.material = static_cast<int>(k);
+        return;
+      }
+    std::vector<std::string> names;
+    for (const auto& m : spec_.materials) names.push_back(m.name);
+    v.fail("the name of a material: " + join(names, true));
+  }
+
+  void read_shape(const Value& v, BodySpec& out) const {
+    if (!v.expect_object("an object with \"type\": " + join(std::array{"box", "disk", "polygon"}, true)))
+      return;
+    const std::size_t issues_before = issues_.size();
+    const Value type = v.member("type", true);
+    const auto kind = type.choice(kShapes);
+    if (!kind) return;
+    out.shape = *kind;
+    switch (*kind) {
+      case BodyShape::Box:
+        read_box(Object(v, {"type", "min", "max"}), out);
+        break;
+      case BodyShape::Disk:
+        read_disk(Object(v, {"type", "center", "radius"}), out);
+        break;
+      case BodyShape::Polygon:
+        if (dim_ != 0 && dim_ != 2)
+          type.fail("\"box\" or \"disk\" (a polygon needs grid.dim 2)");
+        else
+          read_polygon(Object(v, {"type", "vertices"}), out);
+        break;
+    }
+    if (grid_ok_ && issues_.size() == issues_before) check_inside_grid(v, out);
+  }
+
+  void read_box(const Object& s, BodySpec& out) const {
+    const auto lo = s.required("min").vector(dim_);
+    const auto hi = s.required("max").vector(dim_);
+    if (!lo || !hi) return;
+    out.min = *lo;
+    out.max = *hi;
+    for (int a = 0; a < dim_; ++a)
+      if (!(out.max[a] > out.min[a])) {
+        s.required("max").fail(numbers_text(dim_, kAnyNumber) + ", each greater than the box min's");
+        return;
+      }
+  }
+
+  void read_disk(const Object& s, BodySpec& out) const {
+    set_if(out.center, s.required("center").vector(dim_));
+    set_if(out.radius, s.required("radius").number(kPositive));
+  }
+
+  static void read_polygon(const Object& s, BodySpec& out) {
+    const Value list = s.required("vertices");
+    const auto items = list.elements("an array of at least 3 [x, y] points", 3);
+    for (const auto& item : items) {
+      const auto point = item.vector(2);
+      if (!point) return;
+      out.polygon.push_back({(*point)[0], (*point)[1]});
+    }
+    if (items.empty()) return;
+    double twice_area = 0;  // shoelace formula
+    for (std::size_t k = 0; k < out.polygon.size(); ++k) {
+      const auto& p = out.polygon[k];
+      const auto& q = out.polygon[(k + 1) % out.polygon.size()];
+      twice_area += p[0] * q[1] - q[0] * p[1];
+    }
+    const auto [lo, hi] = bounding_box(out, 2);
+    if (std::abs(twice_area) <= 1e-12 * (hi[0] - lo[0]) * (hi[1] - lo[1]))
+      list.fail("the vertices of a polygon with nonzero area");
+  }
+
+  static std::pair<Triple, Triple> bounding_box(const BodySpec& body, int dim) {
+    Triple lo{}, hi{};
+    switch (body.shape) {
+      case BodyShape::Box:
+        return {body.min, body.max};
+      case BodyShape::Disk:
+        for (int a = 0; a < dim; ++a) {
+          lo[a] = body.center[a] - body.radius;
+          hi[a] = body.center[a] + body.radius;
+        }
+        return {lo, hi};
+      case BodyShape::Polygon:
+        lo = {kInf, kInf, 0};
+        hi = {-kInf, -kInf, 0};
+        for (const auto& p : body.polygon)
+          for (int a = 0; a < 2; ++a) {
+            lo[a] = std::min(lo[a], p[a]);
+            hi[a] = std::max(hi[a], p[a]);
+          }
+        return {lo, hi};
+    }
+    return {lo, hi};
+  }
+
+  void check_inside_grid(const Value& shape, const BodySpec& body) const {
+    const GridSpec& g = spec_.grid;
+    const auto [lo, hi] = bounding_box(body, dim_);
+    for (int a = 0; a < dim_; ++a) {
+      const double tolerance = kInsideTolerance * (g.max[a] - g.min[a]);
+      if (lo[a] < g.min[a] - tolerance || hi[a] > g.max[a] + tolerance) {
+        shape.fail("a shape inside the grid [min, max] (grid.min = " + vector_text(g.min) +
+                   ", grid.max = " + vector_text(g.max) + ")");
+        return;
+      }
+    }
+  }
+
+  [[nodiscard]] std::string vector_text(const Triple& x) const {
+    std::vector<std::string> parts;
+    for (int a = 0; a < dim_; ++a) parts.push_back(format_number(x[a]));
+    return "[" + join(parts, false) + "]";
+  }
+
+  void read_sine(const Object& s, BodySpec& out) const {
+    if (!s.valid()) return;
+    out.has_sine_velocity = true;
+    set_if(out.sine_amplitude, s.required("amplitude").vector(dim_));
+    set_if(out.sine_wave_vector, s.required("wave_vector").vector(dim_));
+    set_if(out.sine_phase, s.optional("phase").number());
+  }
+
+  // --- boundary conditions ---
+
+  void read_conditions(const Value& list) {
+    for (const auto& item : list.elements("an array of boundary condition objects"))
+      spec_.conditions.push_back(read_condition(Object(item, {"face", "box", "type", "normal", "velocity"})));
+  }
+
+  VelocityConditionSpec read_condition(const Object& c) const {
+    VelocityConditionSpec out;
+    if (!c.valid()) return out;
+    read_region(c, out);
+    const auto kind = c.required("type").choice(kConditionKinds);
+    set_if(out.kind, kind);
+    if (!kind) return out;
+    read_normal(c, *kind, out);
+    const Value velocity = c.optional("velocity");
+    if (*kind == ConditionKind::Velocity) {
+      if (velocity.present())
+        read_prescribed_velocity(velocity, out);
+      else
+        c.missing("velocity", prescribed_velocity_text());
+    } else if (velocity.present()) {
+      velocity.fail("no velocity unless type is \"velocity\"");
+    }
+    return out;
+  }
+
+  /// Exactly one of "face" and "box".
+  void read_region(const Object& c, VelocityConditionSpec& out) const {
+    const bool face = c.has("face"), box = c.has("box");
+    if (face && box) {
+      c.optional("box").fail("no box when a face is given (exactly one of face or box)");
+    } else if (face) {
+      const Value v = c.optional("face");
+      const auto id = v.choice(kFaces);
+      if (!id) return;
+      out.on_face = true;
+      out.face_axis = *id / 2;
+      out.face_side = *id % 2;
+      if (dim_ != 0 && out.face_axis >= dim_) v.fail(faces_text());
+    } else if (box) {
+      out.on_face = false;
+      const Object b(c.optional("box"), {"min", "max"});
+      const auto lo = b.required("min").vector(dim_);
+      const auto hi = b.required("max").vector(dim_);
+      if (!lo || !hi) return;
+      out.box_min = *lo;
+      out.box_max = *hi;
+      for (int a = 0; a < dim_; ++a)
+        if (out.box_max[a] < out.box_min[a]) {
+          b.required("max").fail(numbers_text(dim_, kAnyNumber) + ", each at least the box min's");
+          return;
+        }
+    } else {
+      c.missing("face", "exactly one of \"face\" (" + faces_text() + ") or \"box\"");
+    }
+  }
+
+  /// The faces of the grid's dimension, e.g. "one of "x-", "x+", "y-", "y+"".
+  [[nodiscard]] std::string faces_text() const {
+    std::vector<std::string_view> names;
+    for (const auto& face : kFaces)
+      if (dim_ == 0 || face.value / 2 < dim_) names.push_back(face.name);
+    return "one of " + join(names, true);
+  }
+
+  void read_normal(const Object& c, ConditionKind kind, VelocityConditionSpec& out) const {
+    const Value normal = c.optional("normal");
+    if (kind != ConditionKind::Slip) {
+      if (normal.present()) normal.fail("no normal unless type is \"slip\"");
+      return;
+    }
+    out.normal_axis = out.face_axis;
+    if (!normal.present()) {
+      if (c.has("box") && !c.has("face"))
+        c.missing("normal", "\"x\", \"y\" or \"z\": the constrained axis of a slip box");
+      return;
+    }
+    const auto axis = normal.choice(kAxes);
+    if (!axis) return;
+    if (dim_ != 0 && *axis >= dim_) {
+      std::vector<std::string_view> names;
+      for (int a = 0; a < dim_; ++a) names.push_back(kAxes[static_cast<std::size_t>(a)].name);
+      normal.fail("one of " + join(names, true) + " (an axis of the " + std::to_string(dim_) + "-D grid)");
+      return;
+    }
+    out.normal_axis = *axis;
+  }
+
+  [[nodiscard]] std::string prescribed_velocity_text() const {
+    const std::string count = dim_ == 0 ? "1 to 3" : std::to_string(dim_);
+    return "an array of " + count + " entries, each a number, null (free) or {\"table\": [[t, v], ...]}";
+  }
+
+  void read_prescribed_velocity(const Value& v, VelocityConditionSpec& out) const {
+    const std::string expected = prescribed_velocity_text();
+    const bool size_ok = v.get().is_array() && (dim_ == 0 ? !v.get().empty() && v.get().size() <= 3
+                                                          : v.get().size() == static_cast<std::size_t>(dim_));
+    if (!size_ok) {
+      v.fail(expected);
+      return;
+    }
+    bool any_prescribed = false;
+    for (std::size_t a = 0; a < v.get().size(); ++a) {
+      const Value component = v.element(a);
+      if (component.get().is_null()) continue;
+      any_prescribed = true;
+      out.velocity[a] = read_time_function(component, expected);
+    }
+    if (!any_prescribed) v.fail(expected + ", at least one not null");
+  }
+
+  /// A number (a constant) or {"table": [[t0, v0], [t1, v1], ...]} with strictly increasing t.
+  static std::optional<TimeFunction> read_time_function(const Value& v, const std::string& expected) {
+    if (v.get().is_number()) {
+      const auto x = v.number();
+      if (!x) return std::nullopt;
+      return TimeFunction{{}, {*x}};
+    }
+    if (!v.get().is_object()) {
+      v.fail(expected);
+      return std::nullopt;
+    }
+    const Object t(v, {"table"});
+    const auto rows = t.required("table").elements("an array of [t, v] rows, at least one", 1);
+    TimeFunction out;
+    for (const auto& row : rows) {
+      const auto tv = row.vector(2);
+      if (!tv) return std::nullopt;
+      if (!out.times.empty() && !((*tv)[0] > out.times.back())) {
+        row.fail("a row whose time is greater than the previous row's");
+        return std::nullopt;
+      }
+      out.times.push_back((*tv)[0]);
+      out.values.push_back((*tv)[1]);
+    }
+    if (rows.empty()) return std::nullopt;
+    return out;
+  }
+
+  // --- loads, solver, output, checks ---
+
+  void read_loads(const Object& loads) {
+    set_if(spec_.loads.gravity, loads.optional("gravity").vector(dim_));
+  }
+
+  void read_solver(const Object& s) {
+    SolverSpec& out = spec_.solver;
+    set_if(out.scheme, s.optional("scheme").choice(kSchemes));
+    const auto transfer = s.optional("transfer").choice(kTransfers);
+    set_if(out.transfer, transfer);
+    set_if(out.position_alpha, s.optional("position_alpha").number(kUnitInterval));
+    const Value flip_fraction = s.optional("flip_fraction");
+    if (out.transfer == VelocityTransfer::Blend)
+      out.flip_fraction = flip_fraction.number(kUnitInterval).value_or(0.99);
+    else if (flip_fraction.present() && (transfer || !s.has("transfer")))
+      flip_fraction.fail("no flip_fraction unless transfer is \"blend\"");
+    set_if(out.shape, s.optional("shape").choice(kShapeKinds));
+    set_if(out.deformation_update, s.optional("deformation_update").choice(kDeformationUpdates));
+    out.dt = s.optional("dt").number(kPositive);
+    const Value courant = s.optional("courant");
+    if (s.has("dt") && courant.present())
+      courant.fail("no courant when dt is given (one of dt or courant)");
+    else
+      set_if(out.courant, courant.number({0, 1, true, false}));
+    set_if(out.end_time, s.required("end_time").number(kPositive));
+    set_if(out.max_steps, s.optional("max_steps").integer(0));
+    set_if(out.mass_tolerance, s.optional("mass_tolerance").number({0, 1, false, true}));
+  }
+
+  void read_output(const Object& o) {
+    OutputSpec& out = spec_.output;
+    set_if(out.every_steps, o.optional("every_steps").integer(0));
+    set_if(out.every_time, o.optional("every_time").number(kNonNegative));
+    if (out.every_steps != 0 && out.every_time != 0)
+      o.optional("every_time").fail("0 when every_steps is nonzero (one of every_steps or every_time)");
+    set_if(out.particles, o.optional("particles").boolean());
+    set_if(out.plots, o.optional("plots").boolean());
+    const std::string fields_text = "one of the particle fields " + join(kParticleFields, true);
+    for (const auto& item : o.optional("fields").elements("an array of particle field names")) {
+      const auto name = item.string();
+      if (!name) continue;
+      if (is_particle_field(*name))
+        out.fields.push_back(*name);
+      else
+        item.fail(fields_text);
+    }
+  }
+
+  void read_checks(const Value& list) {
+    for (const auto& item : list.elements("an array of check objects")) {
+      const Object c(item, {"name", "measure", "expected", "tolerance", "source"});
+      if (!c.valid()) continue;
+      CheckSpec check;
+      set_if(check.name, c.required("name").string());
+      read_measure(c.required("measure"), check);
+      set_if(check.expected, c.required("expected").number());
+      set_if(check.tolerance, c.required("tolerance").number(kNonNegative));
+      set_if(check.source, c.required("source").string());
+      spec_.checks.push_back(check);
+    }
+  }
+
+  static void read_measure(const Value& v, CheckSpec& check) {
+    std::vector<std::string_view> names;
+    for (const auto& m : kMeasures) names.push_back(m.name);
+    const std::string expected = "one of the measures " + join(names, true);
+    if (!v.usable(expected)) return;
+    if (!v.get().is_string() || !is_known_measure(v.get().get_ref<const std::string&>())) {
+      v.fail(expected);
+      return;
+    }
+    check.measure = v.get().get<std::string>();
+  }
+
+  Issues& issues_;
+  Spec spec_;
+  int dim_ = 0;                  // grid.dim, 0 while unknown (missing or invalid)
+  bool grid_ok_ = false;         // the grid has no issue: bodies can be checked against it
+  bool names_complete_ = false;  // every material has a valid name: bodies' references can be checked
+};
+
+}  // namespace
+
+Spec parse_spec(const std::string& json_text) {
+  Issues issues;
+  std::optional<json> root = parse_json(json_text, issues);
+  if (!root) throw InputError(issues.take());
+  Spec spec = SpecReader(issues).read(*root);
+  if (!issues.empty()) throw InputError(issues.take());
+  spec.echo = std::move(*root);
+  return spec;
+}
+
+Spec load_spec(const std::filesystem::path& file) {
+  std::error_code error;
+  const bool is_file = std::filesystem::is_regular_file(file, error);
+  std::ifstream in(file, std::ios::binary);
+  if (!is_file || !in) {
+    const char* found = !std::filesystem::exists(file, error)        ? "no such file"
+                        : std::filesystem::is_directory(file, error) ? "a folder"
+                                                                     : "a file that cannot be read";
+    throw InputError({{file.string(), found, "a readable JSON input file"}});
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_spec(text.str());
+}
+
+}  // namespace matpoint

@@ -1,0 +1,125 @@
+// Spec: the validated, plain-struct form of an input file (DESIGN.md data flow: input.json -> Spec).
+// Every field here has passed validation; the simulation never re-checks user input.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace matpoint {
+
+using Triple = std::array<double, 3>;  // unused trailing components are zero
+
+enum class UpdateScheme { USL, USF, MUSL, USAVG };        // Nairn 2026 §2.1 (MUSL = "USL+")
+enum class VelocityTransfer { FLIP, PIC, Blend };          // particle velocity update
+enum class ShapeKind { Linear, BSpline2 };                 // grid basis
+enum class DeformationUpdate { Exponential, Linear };      // dF = exp(L dt) or I + L dt
+enum class MaterialModel { LinearElastic, NeoHookean };
+enum class NeoHookeanVolumetric { LogJ, HalfJSquared };    // lambda lnJ/J  or  lambda/2 (J - 1/J)
+
+struct GridSpec {
+  int dim = 2;
+  Triple min{}, max{};
+  Triple cell_size{};        // per direction
+  std::array<int, 3> cells{};  // (max - min) / cell_size, exact
+};
+
+struct MaterialSpec {
+  std::string name;
+  MaterialModel model = MaterialModel::LinearElastic;
+  double density = 0;
+  double youngs_modulus = 0, poisson_ratio = 0;  // always filled (converted when lambda/mu are given)
+  double lambda = 0, mu = 0;                     // always filled
+  NeoHookeanVolumetric volumetric = NeoHookeanVolumetric::LogJ;
+};
+
+enum class BodyShape { Box, Disk, Polygon };
+
+struct BodySpec {
+  std::string name;
+  int material = 0;  // index into Spec::materials
+  BodyShape shape = BodyShape::Box;
+  Triple min{}, max{};                        // Box (interval / rectangle / box)
+  Triple center{};                            // Disk (disk in 2-D, sphere in 3-D, interval in 1-D)
+  double radius = 0;
+  std::vector<std::array<double, 2>> polygon;  // Polygon (2-D only), counter-clockwise or clockwise
+  int particles_per_cell = 2;                  // per direction
+  Triple velocity{};                           // initial velocity (uniform part)
+  // Optional sine field added to it: amplitude * sin(wave_vector . x + phase), e.g. a bar's first mode.
+  bool has_sine_velocity = false;
+  Triple sine_amplitude{}, sine_wave_vector{};
+  double sine_phase = 0;
+};
+
+/// A scalar function of time: a constant (one value) or a piecewise-linear table, held constant
+/// outside its range.
+struct TimeFunction {
+  std::vector<double> times;   // empty for a constant
+  std::vector<double> values;  // one value for a constant
+  [[nodiscard]] double operator()(double t) const;
+};
+
+enum class ConditionKind { Fixed, Slip, Velocity };
+
+struct VelocityConditionSpec {
+  bool on_face = true;  // face of the domain, or a box of nodes
+  int face_axis = 0;    // 0, 1, 2 for x, y, z
+  int face_side = 0;    // 0: min face, 1: max face
+  Triple box_min{}, box_max{};
+  ConditionKind kind = ConditionKind::Fixed;
+  int normal_axis = 0;  // Slip: the constrained (normal) axis; a face's own axis by default
+  std::array<std::optional<TimeFunction>, 3> velocity;  // Velocity: prescribed components, empty = free
+};
+
+struct LoadSpec {
+  Triple gravity{};
+};
+
+struct SolverSpec {
+  UpdateScheme scheme = UpdateScheme::USL;
+  VelocityTransfer transfer = VelocityTransfer::FLIP;
+  double position_alpha = 1.0;  // Nairn 2026 eq. (7): weight of the acceleration term in the position update
+  double flip_fraction = 1.0;   // Blend: V = f V_FLIP + (1 - f) V_PIC
+  ShapeKind shape = ShapeKind::Linear;
+  DeformationUpdate deformation_update = DeformationUpdate::Exponential;
+  std::optional<double> dt;  // fixed time step, or
+  double courant = 0.5;      // Courant number with the largest material wave speed
+  double end_time = 0;
+  long max_steps = 0;             // 0: no limit
+  double mass_tolerance = 1e-12;  // nodes lighter than this fraction of the largest particle mass are inactive
+};
+
+struct OutputSpec {
+  long every_steps = 0;     // 0: use every_time
+  double every_time = 0;    // 0 and every_steps == 0: first and last state only
+  bool particles = true;    // write particles_NNNNNN.vtu + results.pvd
+  bool plots = true;        // write plots/*.png at the end (needs python3-matplotlib)
+  std::vector<std::string> fields;  // particle fields written to .vtu; empty = all
+};
+
+/// A reference value the run compares itself against (summary.json "checks").
+struct CheckSpec {
+  std::string name;
+  std::string measure;  // a name from analysis/measures.hpp
+  double expected = 0;
+  double tolerance = 0;  // pass when |measured - expected| <= tolerance
+  std::string source;
+};
+
+struct Spec {
+  std::string title;
+  GridSpec grid;
+  std::vector<MaterialSpec> materials;
+  std::vector<BodySpec> bodies;
+  std::vector<VelocityConditionSpec> conditions;
+  LoadSpec loads;
+  SolverSpec solver;
+  OutputSpec output;
+  std::vector<CheckSpec> checks;
+  nlohmann::json echo;  // the input as read (comments stripped), echoed into summary.json
+};
+
+}  // namespace matpoint

@@ -1,0 +1,137 @@
+#include "matpoint/io/vtk_writer.hpp"
+
+#include "matpoint/io/atomic_file.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <iomanip>
+#include <sstream>
+
+namespace matpoint {
+
+namespace {
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static constexpr char table[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const unsigned b0 = bytes[i];
+    const unsigned b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
+    const unsigned b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+    out += table[b0 >> 2];
+    out += table[((b0 & 3) << 4) | (b1 >> 4)];
+    out += i + 1 < bytes.size() ? table[((b1 & 15) << 2) | (b2 >> 6)] : '=';
+    out += i + 2 < bytes.size() ? table[b2 & 63] : '=';
+  }
+  return out;
+}
+
+/// One base64 binary DataArray: a UInt32 byte count followed by the values (VTK's default header).
+template <class T> std::string data_array(const std::string& name, const char* type, int components,
+                                          const std::vector<T>& values) {
+  std::vector<unsigned char> bytes(sizeof(std::uint32_t) + values.size() * sizeof(T));
+  const auto count = static_cast<std::uint32_t>(values.size() * sizeof(T));
+  std::memcpy(bytes.data(), &count, sizeof count);
+  if (!values.empty()) std::memcpy(bytes.data() + sizeof count, values.data(), values.size() * sizeof(T));
+  std::ostringstream out;
+  out << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\"" << components
+      << "\" format=\"binary\">\n          " << base64(bytes) << "\n        </DataArray>\n";
+  return out.str();
+}
+
+template <int D> std::vector<double> padded_vectors(const std::vector<Vec<D>>& v) {
+  std::vector<double> out(3 * v.size(), 0.0);
+  for (std::size_t p = 0; p < v.size(); ++p)
+    for (int a = 0; a < D; ++a) out[3 * p + a] = v[p][a];
+  return out;
+}
+
+template <int D, class Fn> std::vector<double> padded_tensors(std::size_t n, Fn&& tensor_of) {
+  std::vector<double> out(9 * n, 0.0);
+  for (std::size_t p = 0; p < n; ++p) {
+    const Mat<D> t = tensor_of(p);
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) out[9 * p + 3 * i + j] = t(i, j);
+  }
+  return out;
+}
+
+template <class Fn> std::vector<double> scalars(std::size_t n, Fn&& value_of) {
+  std::vector<double> out(n);
+  for (std::size_t p = 0; p < n; ++p) out[p] = value_of(p);
+  return out;
+}
+
+bool wanted(const std::vector<std::string>& fields, const std::string& name) {
+  return fields.empty() || std::find(fields.begin(), fields.end(), name) != fields.end();
+}
+
+}  // namespace
+
+template <int D> std::string particles_vtu(const ParticleSet<D>& ps, const std::vector<std::string>& fields) {
+  const std::size_t n = ps.size();
+  std::ostringstream point_data;
+  if (wanted(fields, "velocity")) point_data << data_array("velocity", "Float64", 3, padded_vectors<D>(ps.v));
+  if (wanted(fields, "stress"))
+    point_data << data_array("stress", "Float64", 9, padded_tensors<D>(n, [&](std::size_t p) { return ps.stress[p]; }));
+  if (wanted(fields, "deformation_gradient"))
+    point_data << data_array("deformation_gradient", "Float64", 9,
+                             padded_tensors<D>(n, [&](std::size_t p) { return ps.F[p]; }));
+  if (wanted(fields, "strain"))  // Green-Lagrange strain E = (F^T F - I) / 2
+    point_data << data_array("strain", "Float64", 9, padded_tensors<D>(n, [&](std::size_t p) {
+                               return Mat<D>(0.5 * (ps.F[p].transpose() * ps.F[p] - Mat<D>::Identity()));
+                             }));
+  if (wanted(fields, "jacobian"))
+    point_data << data_array("jacobian", "Float64", 1, scalars(n, [&](std::size_t p) { return ps.F[p].determinant(); }));
+  if (wanted(fields, "mass")) point_data << data_array("mass", "Float64", 1, ps.mass);
+  if (wanted(fields, "volume"))
+    point_data << data_array("volume", "Float64", 1, scalars(n, [&](std::size_t p) { return ps.volume(p); }));
+  if (wanted(fields, "material")) point_data << data_array("material", "Int32", 1, ps.material);
+  if (wanted(fields, "body")) point_data << data_array("body", "Int32", 1, ps.body);
+  if (wanted(fields, "id")) {
+    std::vector<std::int64_t> ids(ps.id.begin(), ps.id.end());
+    point_data << data_array("id", "Int64", 1, ids);
+  }
+  if (wanted(fields, "state") && ps.state_stride > 0)
+    point_data << data_array("state", "Float64", ps.state_stride, ps.state);
+
+  std::vector<std::int64_t> connectivity(n), offsets(n);
+  std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
+  for (std::size_t p = 0; p < n; ++p) {
+    connectivity[p] = static_cast<std::int64_t>(p);
+    offsets[p] = static_cast<std::int64_t>(p + 1);
+  }
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n"
+      << "  <UnstructuredGrid>\n"
+      << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n"
+      << "      <PointData>\n"
+      << point_data.str() << "      </PointData>\n"
+      << "      <Points>\n"
+      << data_array("Points", "Float64", 3, padded_vectors<D>(ps.x)) << "      </Points>\n"
+      << "      <Cells>\n"
+      << data_array("connectivity", "Int64", 1, connectivity) << data_array("offsets", "Int64", 1, offsets)
+      << data_array("types", "UInt8", 1, types) << "      </Cells>\n"
+      << "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  return out.str();
+}
+
+void PvdCollection::add(double time, const std::string& dataset_file) {
+  entries_.emplace_back(time, dataset_file);
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
+  out << std::setprecision(17);
+  for (const auto& [t, file] : entries_)
+    out << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << file << "\"/>\n";
+  out << "  </Collection>\n</VTKFile>\n";
+  write_file_atomically(file_, out.str());
+}
+
+template std::string particles_vtu<1>(const ParticleSet<1>&, const std::vector<std::string>&);
+template std::string particles_vtu<2>(const ParticleSet<2>&, const std::vector<std::string>&);
+template std::string particles_vtu<3>(const ParticleSet<3>&, const std::vector<std::string>&);
+
+}  // namespace matpoint

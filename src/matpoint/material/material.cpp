@@ -1,0 +1,65 @@
+#include "matpoint/material/material.hpp"
+
+#include <cmath>
+
+namespace matpoint {
+
+Material make_material(const MaterialSpec& spec) {
+  switch (spec.model) {
+    case MaterialModel::NeoHookean:
+      return NeoHookean{spec.density, spec.lambda, spec.mu, spec.volumetric};
+    case MaterialModel::LinearElastic:
+      break;
+  }
+  return LinearElastic{spec.density, spec.youngs_modulus, spec.lambda, spec.mu};
+}
+
+template <int D> long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles) {
+  const auto n = static_cast<std::ptrdiff_t>(particles.size());
+  long first_bad = -1;
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    std::visit(
+        [&](const auto& model) {
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : first_bad)
+          for (std::ptrdiff_t p = 0; p < n; ++p) {
+            if (particles.material[p] != static_cast<int>(m)) continue;
+            const Mat<D>& F = particles.F[p];
+            if (!(F.determinant() > 0.0)) {
+              first_bad = std::max(first_bad, static_cast<long>(n - p));  // max of (n - p) = min p
+              continue;
+            }
+            particles.stress[p] = model.template stress<D>(F);
+            if (!particles.stress[p].allFinite()) first_bad = std::max(first_bad, static_cast<long>(n - p));
+          }
+        },
+        materials[m]);
+  }
+  return first_bad < 0 ? -1 : n - first_bad;
+}
+
+template <int D>
+double strain_energy(const std::vector<Material>& materials, const ParticleSet<D>& particles, int body) {
+  double energy = 0.0;
+  const auto n = static_cast<std::ptrdiff_t>(particles.size());
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    std::visit(
+        [&](const auto& model) {
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(+ : energy)
+          for (std::ptrdiff_t p = 0; p < n; ++p) {
+            if (particles.material[p] != static_cast<int>(m) || (body >= 0 && particles.body[p] != body)) continue;
+            energy += particles.volume0[p] * model.template energy_density<D>(particles.F[p]);
+          }
+        },
+        materials[m]);
+  }
+  return energy;
+}
+
+template long update_stress<1>(const std::vector<Material>&, ParticleSet<1>&);
+template long update_stress<2>(const std::vector<Material>&, ParticleSet<2>&);
+template long update_stress<3>(const std::vector<Material>&, ParticleSet<3>&);
+template double strain_energy<1>(const std::vector<Material>&, const ParticleSet<1>&, int);
+template double strain_energy<2>(const std::vector<Material>&, const ParticleSet<2>&, int);
+template double strain_energy<3>(const std::vector<Material>&, const ParticleSet<3>&, int);
+
+}  // namespace matpoint

@@ -1,0 +1,32 @@
+// The material models a simulation can use, and the batched stress update over particles.
+// Adding a model: a struct with stress<D>, energy_density<D>, wave_speed<D> in this folder, one
+// alternative in Material, one case in make_material.
+#pragma once
+
+#include "matpoint/io/spec.hpp"
+#include "matpoint/material/linear_elastic.hpp"
+#include "matpoint/material/neo_hookean.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+#include <variant>
+#include <vector>
+
+namespace matpoint {
+
+using Material = std::variant<LinearElastic, NeoHookean>;
+
+Material make_material(const MaterialSpec& spec);
+
+template <int D> double wave_speed(const Material& m) {
+  return std::visit([](const auto& model) { return model.template wave_speed<D>(); }, m);
+}
+
+/// sigma_p = sigma(F_p) for every particle. The model is chosen once per material, not per
+/// particle. Returns the index of the first particle with det F <= 0 or a non-finite stress, or -1.
+template <int D> long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles);
+
+/// Sum over particles of V0_p W(F_p).
+template <int D> double strain_energy(const std::vector<Material>& materials, const ParticleSet<D>& particles,
+                                      int body = -1);
+
+}  // namespace matpoint

@@ -1,0 +1,38 @@
+// Compressible neo-Hookean solid in the two forms the papers use:
+//   log_j:          sigma = lambda ln J / J I + mu / J (B - I)       Gong 2015 eq. (4.5), Iaconeta 2017
+//   half_j_squared: sigma = lambda / 2 (J - 1/J) I + mu / J (B - I)  Nairn 2026 eq. (14)
+// B = F F^T. 2-D is plane strain (F_zz = 1), 1-D is uniaxial strain (F = diag(F11, 1, 1)), so the
+// formulas hold with D x D matrices and J = det F.
+#pragma once
+
+#include "matpoint/core/types.hpp"
+#include "matpoint/io/spec.hpp"
+
+#include <cmath>
+
+namespace matpoint {
+
+struct NeoHookean {
+  double density, lambda, mu;
+  NeoHookeanVolumetric volumetric = NeoHookeanVolumetric::LogJ;
+
+  template <int D> [[nodiscard]] Mat<D> stress(const Mat<D>& F) const {
+    const double J = F.determinant();
+    const double pressure_part =
+        volumetric == NeoHookeanVolumetric::LogJ ? lambda * std::log(J) / J : 0.5 * lambda * (J - 1.0 / J);
+    return pressure_part * Mat<D>::Identity() + (mu / J) * (F * F.transpose() - Mat<D>::Identity());
+  }
+  /// Stored energy per unit initial volume: mu/2 (tr C - D) - mu ln J + U(J), where
+  /// U = lambda/2 (ln J)^2 (log_j) or lambda/2 ((J^2 - 1)/2 - ln J) (half_j_squared).
+  template <int D> [[nodiscard]] double energy_density(const Mat<D>& F) const {
+    const double J = F.determinant();
+    const double lnJ = std::log(J);
+    const double U = volumetric == NeoHookeanVolumetric::LogJ ? 0.5 * lambda * lnJ * lnJ
+                                                              : 0.5 * lambda * (0.5 * (J * J - 1.0) - lnJ);
+    return 0.5 * mu * ((F.transpose() * F).trace() - D) - mu * lnJ + U;
+  }
+  /// Small-strain dilatational wave speed sqrt((lambda + 2 mu) / rho).
+  template <int D> [[nodiscard]] double wave_speed() const { return std::sqrt((lambda + 2.0 * mu) / density); }
+};
+
+}  // namespace matpoint

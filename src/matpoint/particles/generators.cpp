@@ -1,0 +1,159 @@
+#include "matpoint/particles/generators.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace matpoint {
+
+namespace {
+
+bool polygon_contains(const std::vector<std::array<double, 2>>& poly, double x, double y) {
+  bool inside = false;  // even-odd rule
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const auto& a = poly[i];
+    const auto& b = poly[j];
+    if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0]) inside = !inside;
+  }
+  return inside;
+}
+
+template <int D> Vec<D> initial_velocity(const BodySpec& body, const Vec<D>& x) {
+  Vec<D> v;
+  double phase = body.sine_phase;
+  for (int a = 0; a < D; ++a) phase += body.sine_wave_vector[a] * x[a];
+  for (int a = 0; a < D; ++a)
+    v[a] = body.velocity[a] + (body.has_sine_velocity ? body.sine_amplitude[a] * std::sin(phase) : 0.0);
+  return v;
+}
+
+template <int D> void bounding_box(const BodySpec& body, Vec<D>& lo, Vec<D>& hi) {
+  for (int a = 0; a < D; ++a) {
+    switch (body.shape) {
+      case BodyShape::Box:
+        lo[a] = body.min[a];
+        hi[a] = body.max[a];
+        break;
+      case BodyShape::Disk:
+        lo[a] = body.center[a] - body.radius;
+        hi[a] = body.center[a] + body.radius;
+        break;
+      case BodyShape::Polygon:
+        lo[a] = hi[a] = body.polygon.front()[a];
+        for (const auto& v : body.polygon) {
+          lo[a] = std::min(lo[a], v[a]);
+          hi[a] = std::max(hi[a], v[a]);
+        }
+        break;
+    }
+  }
+}
+
+template <int D> void permute(std::vector<Index> const& order, auto& array) {
+  auto copy = array;
+  for (std::size_t k = 0; k < order.size(); ++k) array[k] = copy[order[k]];
+}
+
+}  // namespace
+
+template <int D> bool shape_contains(const BodySpec& body, const Vec<D>& x) {
+  switch (body.shape) {
+    case BodyShape::Box:
+      for (int a = 0; a < D; ++a)
+        if (x[a] < body.min[a] || x[a] > body.max[a]) return false;
+      return true;
+    case BodyShape::Disk: {
+      double r2 = 0;
+      for (int a = 0; a < D; ++a) r2 += (x[a] - body.center[a]) * (x[a] - body.center[a]);
+      return r2 <= body.radius * body.radius;
+    }
+    case BodyShape::Polygon:
+      if constexpr (D == 2) return polygon_contains(body.polygon, x[0], x[1]);
+      return false;
+  }
+  return false;
+}
+
+template <int D>
+std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material, const Grid<D>& grid,
+                          ParticleSet<D>& particles) {
+  Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
+  bounding_box<D>(body, lo, hi);
+  std::array<int, D> first{}, last{};
+  for (int a = 0; a < D; ++a) {
+    first[a] = std::max(0, static_cast<int>(std::floor((lo[a] - grid.origin[a]) / grid.h[a])));
+    last[a] = std::min(grid.cells[a] - 1, static_cast<int>(std::floor((hi[a] - grid.origin[a]) / grid.h[a])));
+  }
+  const int ppc = body.particles_per_cell;
+  const Vec<D> sub = grid.h / ppc;
+  const double volume = sub.prod();
+  const std::size_t before = particles.size();
+
+  // Walk cells, then sub-cells, in row-major order (x fastest), so particles come out cell-sorted.
+  std::array<int, D> cell = first;
+  while (true) {
+    std::array<int, D> s{};
+    while (true) {
+      Vec<D> x;
+      for (int a = 0; a < D; ++a) x[a] = grid.origin[a] + cell[a] * grid.h[a] + (s[a] + 0.5) * sub[a];
+      if (shape_contains<D>(body, x))
+        particles.add(x, initial_velocity<D>(body, x), material.density * volume, volume, sub, body.material,
+                      body_index);
+      int a = 0;
+      while (a < D && ++s[a] == ppc) s[a++] = 0;
+      if (a == D) break;
+    }
+    int a = 0;
+    while (a < D && ++cell[a] > last[a]) cell[a] = first[a], ++a;
+    if (a == D) break;
+  }
+  return particles.size() - before;
+}
+
+template <int D> void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
+  const std::size_t n = particles.size();
+  Index cell_count = 1;
+  for (int a = 0; a < D; ++a) cell_count *= grid.cells[a];
+  std::vector<Index> cell(n);
+  bool sorted = true;
+  for (std::size_t p = 0; p < n; ++p) {
+    cell[p] = grid.cell_index(particles.x[p]);
+    if (p > 0 && cell[p] < cell[p - 1]) sorted = false;
+  }
+  if (sorted) return;
+  std::vector<Index> start(cell_count + 1, 0);
+  for (auto c : cell) ++start[c + 1];
+  for (Index c = 0; c < cell_count; ++c) start[c + 1] += start[c];
+  std::vector<Index> order(n);
+  for (std::size_t p = 0; p < n; ++p) order[start[cell[p]]++] = static_cast<Index>(p);
+
+  permute<D>(order, particles.x);
+  permute<D>(order, particles.v);
+  permute<D>(order, particles.mass);
+  permute<D>(order, particles.volume0);
+  permute<D>(order, particles.size0);
+  permute<D>(order, particles.F);
+  permute<D>(order, particles.stress);
+  permute<D>(order, particles.L);
+  permute<D>(order, particles.material);
+  permute<D>(order, particles.body);
+  permute<D>(order, particles.id);
+  if (particles.state_stride > 0) {
+    const auto copy = particles.state;
+    const int s = particles.state_stride;
+    for (std::size_t k = 0; k < n; ++k)
+      std::copy_n(copy.begin() + order[k] * s, s, particles.state.begin() + static_cast<Index>(k) * s);
+  }
+}
+
+#define MATPOINT_INSTANTIATE(D)                                                                        \
+  template std::size_t generate_body<D>(const BodySpec&, int, const MaterialSpec&, const Grid<D>&,     \
+                                        ParticleSet<D>&);                                              \
+  template bool shape_contains<D>(const BodySpec&, const Vec<D>&);                                     \
+  template void sort_by_cell<D>(const Grid<D>&, ParticleSet<D>&);
+MATPOINT_INSTANTIATE(1)
+MATPOINT_INSTANTIATE(2)
+MATPOINT_INSTANTIATE(3)
+#undef MATPOINT_INSTANTIATE
+
+}  // namespace matpoint

@@ -1,0 +1,22 @@
+// Particle generators: fill a body's shape with particles at the centres of the sub-cells of each
+// grid cell (particles_per_cell per direction), and the cell sort that keeps transfers local.
+#pragma once
+
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/io/spec.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+namespace matpoint {
+
+/// Adds the particles of one body; returns how many were added.
+template <int D>
+std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material, const Grid<D>& grid,
+                          ParticleSet<D>& particles);
+
+/// True when x lies inside the body's shape (boundary included).
+template <int D> bool shape_contains(const BodySpec& body, const Vec<D>& x);
+
+/// Stable counting sort of all particle arrays by the flat index of the cell that holds them.
+template <int D> void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles);
+
+}  // namespace matpoint

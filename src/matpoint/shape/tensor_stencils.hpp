@@ -1,0 +1,77 @@
+// Per-particle stencils of a tensor-product basis, evaluated once per step and reused by every
+// particle-grid transfer of that step (Nairn 2026 §2.1: "shape data computed once, at step start").
+// Only the 1-D factors are stored (2 D width numbers per particle); the D-dimensional weights and
+// gradients are formed on the fly, which costs a few multiplications and saves memory traffic.
+#pragma once
+
+#include "matpoint/core/types.hpp"
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+#include <array>
+#include <vector>
+
+namespace matpoint {
+
+template <int D, class Basis> struct TensorStencils {
+  static constexpr int W = Basis::width;
+  static constexpr int nodes_per_particle = D == 1 ? W : (D == 2 ? W * W : W * W * W);
+
+  std::vector<Index> base;                       // flat index of the lowest node
+  std::vector<std::array<double, D * W>> weight;  // phi of each direction, [a * W + k]
+  std::vector<std::array<double, D * W>> slope;   // d phi / dx of each direction
+
+  void evaluate(const Grid<D>& grid, const ParticleSet<D>& particles);
+
+  /// Largest flat-index distance from base[p] to any node of the stencil.
+  [[nodiscard]] static Index max_node_offset(const Grid<D>& grid) {
+    Index reach = 0;
+    for (int a = 0; a < D; ++a) reach += (W - 1) * grid.stride[a];
+    return reach;
+  }
+
+  /// Calls fn(node, N, gradN) for every node in particle p's support.
+  template <class Fn> void for_each_node(const Grid<D>& grid, std::size_t p, Fn&& fn) const {
+    const auto& w = weight[p];
+    const auto& s = slope[p];
+    const Index b = base[p];
+    if constexpr (D == 1) {
+      for (int i = 0; i < W; ++i) fn(b + i, w[i], Vec<1>(s[i]));
+    } else if constexpr (D == 2) {
+      const Index sy = grid.stride[1];
+      for (int j = 0; j < W; ++j)
+        for (int i = 0; i < W; ++i)
+          fn(b + i + j * sy, w[i] * w[W + j], Vec<2>(s[i] * w[W + j], w[i] * s[W + j]));
+    } else {
+      const Index sy = grid.stride[1], sz = grid.stride[2];
+      for (int k = 0; k < W; ++k)
+        for (int j = 0; j < W; ++j) {
+          const double wjk = w[W + j] * w[2 * W + k];
+          for (int i = 0; i < W; ++i)
+            fn(b + i + j * sy + k * sz, w[i] * wjk,
+               Vec<3>(s[i] * wjk, w[i] * s[W + j] * w[2 * W + k], w[i] * w[W + j] * s[2 * W + k]));
+        }
+    }
+  }
+};
+
+template <int D, class Basis>
+void TensorStencils<D, Basis>::evaluate(const Grid<D>& grid, const ParticleSet<D>& particles) {
+  const auto n = static_cast<std::ptrdiff_t>(particles.size());
+  base.resize(n);
+  weight.resize(n);
+  slope.resize(n);
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum)
+  for (std::ptrdiff_t p = 0; p < n; ++p) {
+    std::array<int, D> lowest{};
+    for (int a = 0; a < D; ++a) {
+      const double xi = (particles.x[p][a] - grid.origin[a]) / grid.h[a];
+      lowest[a] = Basis::evaluate(xi, grid.cells[a], &weight[p][a * W], &slope[p][a * W]);
+      const double inv_h = 1.0 / grid.h[a];
+      for (int k = 0; k < W; ++k) slope[p][a * W + k] *= inv_h;
+    }
+    base[p] = grid.node_index(lowest);
+  }
+}
+
+}  // namespace matpoint
