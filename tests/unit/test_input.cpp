@@ -71,7 +71,7 @@ TEST(InputReader, MinimalTwoDimensionalInputGetsDefaults) {
   EXPECT_EQ(spec.loads.gravity, (Triple{0, 0, 0}));
 
   const SolverSpec& solver = spec.solver;
-  EXPECT_EQ(solver.scheme, UpdateScheme::USL);
+  EXPECT_EQ(solver.scheme, UpdateScheme::MUSL);
   EXPECT_EQ(solver.transfer, VelocityTransfer::FLIP);
   EXPECT_EQ(solver.position_alpha, 1.0);
   EXPECT_EQ(solver.shape, ShapeKind::Linear);

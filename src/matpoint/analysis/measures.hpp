@@ -11,13 +11,16 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 6> kMeasures{{
+inline constexpr std::array<MeasureInfo, 9> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |E(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy"},
     {"max_relative_momentum_error",
      "max over output times of |P(t) - P(0) - I_ext(t)| / sum_p m_p |V_p(0)| (I_ext: impulse of gravity)"},
     {"min_jacobian", "smallest det F of any particle at any output time"},
     {"final_time", "simulated time reached at the end of the run"},
+    {"final_com_velocity_x", "x velocity of the centre of mass of all bodies at the last output"},
+    {"final_com_velocity_y", "y velocity of the centre of mass of all bodies at the last output"},
+    {"final_com_velocity_z", "z velocity of the centre of mass of all bodies at the last output"},
     {"vibrating_bar_period_error",
      "|T_measured - T_exact| / T_exact for a 1-D bar fixed at x = min and free at the other end, "
      "T_exact = 4 L / sqrt(E / rho), T_measured from the zero crossings of the centre-of-mass velocity"},

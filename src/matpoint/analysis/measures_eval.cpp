@@ -90,6 +90,14 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
     return history.samples.empty() ? kNaN : j;
   }
   if (name == "final_time") return history.samples.empty() ? kNaN : history.samples.back().time;
+  if (name.starts_with("final_com_velocity_")) {
+    const int axis = name.back() - 'x';
+    if (history.samples.empty() || axis >= history.dim) return kNaN;
+    const auto& last = history.samples.back();
+    double mass = 0.0;
+    for (double m : last.body_mass) mass += m;
+    return last.momentum[axis] / mass;
+  }
   if (name == "vibrating_bar_com_velocity_error") return bar_velocity_error(spec, history);
   if (name == "vibrating_bar_period_error") return bar_period_error(spec, history);
   return kNaN;

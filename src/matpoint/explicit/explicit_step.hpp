@@ -21,12 +21,16 @@ template <int D, class Stencils> class ExplicitStepper {
   /// Particles are re-sorted by cell every `sort_interval` steps (memory locality only).
   static constexpr long sort_interval = 10;
 
-  explicit ExplicitStepper(Simulation<D>& sim) : s_(sim) { velocity_.resize(sim.grid.node_count); }
+  explicit ExplicitStepper(Simulation<D>& sim) : s_(sim) {
+    velocity_.resize(sim.grid.node_count);
+    for (double m : sim.particles.mass) total_mass_ += m;
+  }
 
   /// Advances the simulation by dt; throws NumericalFailure naming step, time and particle.
   void step(double dt) {
     if (s_.step % sort_interval == 0) sort_by_cell(s_.grid, s_.particles);
     stencils_.evaluate(s_.grid, s_.particles);
+    step_dt_ = dt;
     const double t_new = s_.time + dt;
     switch (s_.solver.scheme) {
       case UpdateScheme::USL:
@@ -73,9 +77,7 @@ template <int D, class Stencils> class ExplicitStepper {
     Vec<D> impulse = Vec<D>::Zero();
     double work = 0.0;
     update_grid_velocities(s_.fields, dt, s_.mass_floor, s_.conditions, t_new, impulse, work);
-    double total_mass = 0.0;
-    for (double m : s_.particles.mass) total_mass += m;
-    s_.external_impulse += impulse + total_mass * s_.gravity * dt;
+    s_.external_impulse += impulse + total_mass_ * s_.gravity * dt;
     s_.external_work += work;
   }
 
@@ -84,7 +86,7 @@ template <int D, class Stencils> class ExplicitStepper {
     const auto result = gather_and_move(s_.grid, stencils_, s_.fields, s_.particles, transfer, dt, with_gradient, s_.gravity);
     s_.external_work += result.gravity_work;
     if (result.first_outside >= 0)
-      fail(result.first_outside, dt, "left the grid domain or has a non-finite velocity");
+      fail(result.first_outside, "left the grid domain or has a non-finite velocity");
   }
 
   /// L from the lumped velocities p/m with the conditions at time t (USF task 1.b-1.d, MUSL 4.a-4.c).
@@ -101,21 +103,23 @@ template <int D, class Stencils> class ExplicitStepper {
     if (bad >= 0) {
       std::ostringstream what;
       what << "det F = " << s_.particles.F[bad].determinant() << " (needs > 0) or a non-finite stress";
-      fail(bad, dt, what.str());
+      fail(bad, what.str());
     }
   }
 
-  [[noreturn]] void fail(long p, double dt, const std::string& what) const {
+  [[noreturn]] void fail(long p, const std::string& what) const {
     std::ostringstream entity;
     entity << "particle " << s_.particles.id[p] << " (body " << s_.particles.body[p] << ") at x = ("
            << s_.particles.x[p].transpose() << ")";
-    throw NumericalFailure(s_.step + 1, s_.time + dt, entity.str(), what);
+    throw NumericalFailure(s_.step + 1, s_.time + step_dt_, entity.str(), what);
   }
 
   Simulation<D>& s_;
   Stencils stencils_;
   ScatterWorkspace<D> workspace_;
   std::vector<Vec<D>> velocity_;  // scratch node velocities for USF / MUSL
+  double total_mass_ = 0.0;
+  double step_dt_ = 0.0;
 };
 
 }  // namespace matpoint

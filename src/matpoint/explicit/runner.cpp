@@ -47,6 +47,7 @@ template <int D> HistorySample sample(const Simulation<D>& sim, int body_count) 
   s.min_jacobian = d.min_jacobian;
   s.body_kinetic = d.body_kinetic;
   s.body_strain = d.body_strain;
+  s.body_mass = d.body_mass;
   for (int b = 0; b < body_count; ++b) {
     s.body_momentum.push_back(pad<D>(d.body_momentum[b]));
     s.body_com_velocity.push_back(pad<D>(Vec<D>(d.body_momentum[b] / std::max(d.body_mass[b], 1e-300))));
@@ -190,6 +191,7 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
   write_file_atomically(out_dir / "summary.json", s.dump(2) + "\n");
   if (spec.output.plots && !options.scripts_dir.empty() && !draw_plots(out_dir, options.scripts_dir))
     std::fprintf(stderr, "warning: could not draw plots (needs python3-matplotlib)\n");
+  result.history = std::move(history);
   return result;
 }
 

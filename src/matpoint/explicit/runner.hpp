@@ -2,6 +2,7 @@
 // summary. The basis and dimension are chosen here, once, before any hot loop runs.
 #pragma once
 
+#include "matpoint/analysis/history.hpp"
 #include "matpoint/io/spec.hpp"
 
 #include <nlohmann/json.hpp>
@@ -22,6 +23,7 @@ struct RunResult {
   int exit_code = 0;  // 0 ok, 3 numerical failure
   std::string message;
   nlohmann::json summary;
+  History history;  // one sample per output time
 };
 
 /// Throws InputError (before writing anything) when the spec cannot be set up, e.g. an empty body.

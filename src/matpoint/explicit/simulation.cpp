@@ -23,6 +23,11 @@ template <int D> Simulation<D> build_simulation(const Spec& spec) {
   Simulation<D> sim;
   Vec<D> origin, h;
   std::array<int, D> cells{};
+  if (spec.solver.shape == ShapeKind::BSpline2)
+    for (int a = 0; a < D; ++a)
+      if (spec.grid.cells[a] < 2)
+        throw InputError({{"grid.cell_size", std::to_string(spec.grid.cell_size[a]),
+                           "at least 2 cells per direction for the quadratic B-spline"}});
   for (int a = 0; a < D; ++a) {
     origin[a] = spec.grid.min[a];
     h[a] = spec.grid.cell_size[a];

@@ -79,7 +79,7 @@ struct LoadSpec {
 };
 
 struct SolverSpec {
-  UpdateScheme scheme = UpdateScheme::USL;
+  UpdateScheme scheme = UpdateScheme::MUSL;  // see docs/input.md: robust with FLIP, energy within 0.1 % in two-disks
   VelocityTransfer transfer = VelocityTransfer::FLIP;
   double position_alpha = 1.0;  // Nairn 2026 eq. (7): weight of the acceleration term in the position update
   double flip_fraction = 1.0;   // Blend: V = f V_FLIP + (1 - f) V_PIC

@@ -26,17 +26,21 @@ struct LinearBasis {
   }
 };
 
-/// Uniform quadratic B-spline centred on nodes (support 1.5 cells). Next to the domain edge it
-/// reaches one ghost node layer, so partition of unity and linear reproduction hold everywhere
-/// inside the domain (Steffen, Kirby & Berzins 2008 use the same kernel).
+/// Quadratic B-spline centred on nodes (support 1.5 cells), modified next to the domain edge so
+/// that no node outside the domain is needed: the weight of the missing node -1 is folded into
+/// nodes 0 and 1 as phi_0 += 2 phi_{-1}, phi_1 -= phi_{-1} (the same at the max edge). This keeps
+/// partition of unity and linear reproduction, and in the boundary half-cell the kernel becomes
+/// phi_0 = 1 - xi, phi_1 = xi, which joins the interior kernel with continuous value and slope
+/// (the boundary-modified kernel of Steffen, Kirby & Berzins 2008). A node on a fixed face then
+/// carries the whole weight at the face, so the condition holds there exactly.
 struct QuadraticBSplineBasis {
   static constexpr int width = 3;
-  static constexpr int ghost_layers = 1;
+  static constexpr int ghost_layers = 0;
   static constexpr const char* name = "bspline2";
 
-  static int evaluate(double xi, int /*cells*/, double* w, double* dw) {
-    const int i0 = static_cast<int>(std::floor(xi + 0.5)) - 1;  // nodes i0, i0+1, i0+2
-    const double r = xi - (i0 + 1);                               // in [-1/2, 1/2)
+  static int evaluate(double xi, int cells, double* w, double* dw) {
+    int i0 = static_cast<int>(std::floor(xi + 0.5)) - 1;  // nodes i0, i0+1, i0+2
+    const double r = xi - (i0 + 1);                         // in [-1/2, 1/2)
     const double a = 0.5 - r, b = 0.5 + r;
     w[0] = 0.5 * a * a;
     w[1] = 0.75 - r * r;
@@ -44,7 +48,32 @@ struct QuadraticBSplineBasis {
     dw[0] = -a;
     dw[1] = -2.0 * r;
     dw[2] = b;
+    if (i0 < 0) {  // node -1 missing: nodes 0, 1, 2 carry (phi_0 + 2 phi_-1, phi_1 - phi_-1, 0)
+      fold(w, dw, 0, 1, 2);
+      i0 = 0;
+    } else if (i0 + 2 > cells) {  // node cells + 1 missing: nodes cells - 2 .. cells
+      fold(w, dw, 2, 1, 0);
+      i0 = cells - 2;
+    }
     return i0;
+  }
+
+ private:
+  /// Moves the weight of slot `gone` onto `edge` (x2) and `inner` (x-1), then shifts the three
+  /// slots one node inwards.
+  static void fold(double* w, double* dw, int gone, int edge, int inner) {
+    const double wg = w[gone], dg = dw[gone];
+    double nw[3], nd[3];
+    nw[edge] = w[edge] + 2.0 * wg;
+    nd[edge] = dw[edge] + 2.0 * dg;
+    nw[inner] = w[inner] - wg;
+    nd[inner] = dw[inner] - dg;
+    const int shift = gone == 0 ? -1 : 1;  // slot k holds node (k + shift) of the shifted window
+    for (int k = 0; k < 3; ++k) {
+      const int from = k - shift;  // old slot whose node becomes new slot k
+      w[k] = from >= 0 && from < 3 && from != gone ? nw[from] : 0.0;
+      dw[k] = from >= 0 && from < 3 && from != gone ? nd[from] : 0.0;
+    }
   }
 };
 
