@@ -1,0 +1,49 @@
+// Helpers shared by the tests: load an example's input and run it quietly in a scratch folder.
+#pragma once
+
+#include "matpoint/explicit/runner.hpp"
+#include "matpoint/io/input.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace matpoint::test {
+
+inline Spec load_example(const std::string& name) {
+  return load_spec(std::filesystem::path(MATPOINT_EXAMPLES_DIR) / name / "input.json");
+}
+
+/// Runs without particle files, plots or progress; returns the run's result (history included).
+inline RunResult run_quietly(Spec spec, const std::string& tag) {
+  spec.output.particles = false;
+  spec.output.plots = false;
+  RunOptions options;
+  options.out_dir = std::filesystem::temp_directory_path() / ("matpoint_test_" + tag);
+  options.progress = false;
+  return run_explicit(spec, options);
+}
+
+/// The measured value of the run's check on `measure` (the input must declare such a check).
+inline double measured(const RunResult& result, const std::string& measure) {
+  for (const auto& check : result.summary["checks"])
+    if (check["measure"] == measure && check["measured"].is_number()) return check["measured"].get<double>();
+  return std::nan("");
+}
+
+/// Least-squares slope of log(error) against log(h): the observed order of convergence.
+inline double observed_order(const std::vector<double>& h, const std::vector<double>& error) {
+  const auto n = static_cast<double>(h.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const double x = std::log(h[i]), y = std::log(error[i]);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+}  // namespace matpoint::test
