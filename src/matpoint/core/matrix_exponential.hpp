@@ -7,9 +7,9 @@
 
 namespace matpoint {
 
-/// Scales A until its norm is below 1/4, sums the Taylor series to order 10 (truncation error
-/// below (1/4)^11 / 11! ~ 6e-15 relative), then squares back. Exact to round-off for the
-/// velocity-gradient increments of MPM, where |L dt| is usually far below 1.
+/// Scales A until its norm is below 1/4, sums the Taylor series until the next term is below
+/// 1e-17 (at most order 12: (1/4)^13 / 13! < 1e-17), then squares back. Exact to round-off; for
+/// the velocity-gradient increments of MPM (|L dt| ~ 1e-3) about five terms suffice.
 template <int D> Mat<D> matrix_exponential(const Mat<D>& A) {
   const double norm = A.cwiseAbs().rowwise().sum().maxCoeff();  // infinity norm
   int squarings = 0;
@@ -17,9 +17,12 @@ template <int D> Mat<D> matrix_exponential(const Mat<D>& A) {
   const Mat<D> B = A / std::ldexp(1.0, squarings);
   Mat<D> term = Mat<D>::Identity();
   Mat<D> sum = Mat<D>::Identity();
-  for (int k = 1; k <= 10; ++k) {
+  const double scaled_norm = norm / std::ldexp(1.0, squarings);
+  double term_bound = 1.0;  // bound of |B^k / k!| in the infinity norm
+  for (int k = 1; k <= 12 && term_bound > 1e-17; ++k) {
     term = term * B / k;
     sum += term;
+    term_bound *= scaled_norm / (k + 1);
   }
   for (int s = 0; s < squarings; ++s) sum = sum * sum;
   return sum;
