@@ -5,6 +5,7 @@
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/deformation.hpp"
+#include "matpoint/explicit/fmpm.hpp"
 #include "matpoint/explicit/gather.hpp"
 #include "matpoint/explicit/grid_update.hpp"
 #include "matpoint/explicit/scatter.hpp"
@@ -21,9 +22,12 @@ template <int D, class Stencils> class ExplicitStepper {
   /// Particles are re-sorted by cell every `sort_interval` steps (memory locality only).
   static constexpr long sort_interval = 10;
 
-  explicit ExplicitStepper(Simulation<D>& sim) : s_(sim) {
+  explicit ExplicitStepper(Simulation<D>& sim) : s_(sim), fmpm_(sim.solver.fmpm) {
     velocity_.resize(sim.grid.node_count);
     for (double m : sim.particles.mass) total_mass_ += m;
+    const FmpmSpec& f = sim.solver.fmpm;
+    if (f.period == FmpmPeriod::Courant) fmpm_period_ = f.period_value * sim.grid.min_cell_size() / max_wave_speed(sim);
+    if (f.period == FmpmPeriod::Time) fmpm_period_ = f.period_value;
   }
 
   /// Advances the simulation by dt; throws NumericalFailure naming step, time and particle.
@@ -31,11 +35,12 @@ template <int D, class Stencils> class ExplicitStepper {
     if (s_.step % sort_interval == 0) sort_by_cell(s_.grid, s_.particles);
     stencils_.evaluate(s_.grid, s_.particles);
     step_dt_ = dt;
+    fmpm_now_ = fmpm_due(dt);
     const double t_new = s_.time + dt;
-    switch (s_.solver.scheme) {
+    switch (s_.solver.scheme) {  // the FMPM loops of eq. (3): USL 3.b; USF 1.c, 3.b; USL+ 3.b, 4.c; ...
       case UpdateScheme::USL:
         scatter<kScatterMass | kScatterMomentum | kScatterForce>();
-        grid_momentum_update(dt, t_new);
+        grid_velocity_update(dt, t_new);
         move_particles(dt, /*with_gradient=*/true);
         update_strain(dt);
         break;
@@ -43,23 +48,32 @@ template <int D, class Stencils> class ExplicitStepper {
         scatter<kScatterMass | kScatterMomentum>();
         strain_from_momentum(dt, s_.time);
         scatter<kScatterForce>();
-        grid_momentum_update(dt, t_new);
+        grid_velocity_update(dt, t_new);
         move_particles(dt, /*with_gradient=*/false);
         break;
       case UpdateScheme::USAVG:  // USF and USL halves, each with dt / 2
         scatter<kScatterMass | kScatterMomentum>();
         strain_from_momentum(0.5 * dt, s_.time);
         scatter<kScatterForce>();
-        grid_momentum_update(dt, t_new);
+        grid_velocity_update(dt, t_new);
         move_particles(dt, /*with_gradient=*/true);
         update_strain(0.5 * dt);
         break;
       case UpdateScheme::MUSL:  // USL+: strain from the momenta re-extrapolated from the new velocities
         scatter<kScatterMass | kScatterMomentum | kScatterForce>();
-        grid_momentum_update(dt, t_new);
+        grid_velocity_update(dt, t_new);
         move_particles(dt, /*with_gradient=*/false);
         scatter<kScatterMomentum>();
         strain_from_momentum(dt, t_new);
+        break;
+      case UpdateScheme::USAVGPlus:  // USF and USL+ halves, each with dt / 2
+        scatter<kScatterMass | kScatterMomentum>();
+        strain_from_momentum(0.5 * dt, s_.time);
+        scatter<kScatterForce>();
+        grid_velocity_update(dt, t_new);
+        move_particles(dt, /*with_gradient=*/false);
+        scatter<kScatterMomentum>();
+        strain_from_momentum(0.5 * dt, t_new);
         break;
     }
     s_.time = t_new;
@@ -67,32 +81,69 @@ template <int D, class Stencils> class ExplicitStepper {
   }
 
   [[nodiscard]] const Stencils& stencils() const { return stencils_; }
+  [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
 
  private:
   template <unsigned What> void scatter() {
     scatter_to_grid<What>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields, workspace_);
   }
 
-  void grid_momentum_update(double dt, double t_new) {
+  /// Periodic FMPM (Nairn 2026 §3.3, NairnMPM's rule): a step runs the loop when t + dt reaches
+  /// the next FMPM time, which then moves to t + dt + T_X; the other steps are FLIP.
+  bool fmpm_due(double dt) {
+    const FmpmSpec& f = s_.solver.fmpm;
+    if (s_.solver.transfer != VelocityTransfer::FMPM) return false;
+    switch (f.period) {
+      case FmpmPeriod::EveryStep:
+        return true;
+      case FmpmPeriod::Steps:
+        return s_.step % static_cast<long>(f.period_value) == 0;
+      case FmpmPeriod::Courant:
+      case FmpmPeriod::Time:
+        break;
+    }
+    if (s_.time + dt < next_fmpm_time_) return false;
+    next_fmpm_time_ = s_.time + dt + fmpm_period_;
+    return true;
+  }
+
+  /// Tasks 2.a-3.b: v(1) = p/m, v+(1) = (p + f dt)/m with the conditions, a = (v+(1) - v(1))/dt;
+  /// then v+(k) from the FMPM loop (FMPM steps) or XPIC's m~_k^-1 p + a dt.
+  void grid_velocity_update(double dt, double t_new) {
     Vec<D> impulse = Vec<D>::Zero();
     double work = 0.0;
     update_grid_velocities(s_.fields, dt, s_.mass_floor, s_.conditions, t_new, impulse, work);
+    if (fmpm_now_) {
+      fmpm_.run(s_.grid, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new,
+                s_.fields.velocity_new, workspace_, &impulse, &work);
+    } else if (s_.solver.transfer == VelocityTransfer::XPIC) {
+      auto& vx = s_.fields.velocity_xpic;  // the series on the old lumped velocities (§1.5)
+      vx = s_.fields.velocity;
+      fmpm_.run(s_.grid, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new, vx,
+                workspace_);
+      for (std::size_t i = 0; i < vx.size(); ++i) vx[i] += s_.fields.acceleration[i] * dt;
+    }
     s_.external_impulse += impulse + total_mass_ * s_.gravity * dt;
     s_.external_work += work;
   }
 
   void move_particles(double dt, bool with_gradient) {
-    const TransferParameters transfer{s_.solver.transfer, s_.solver.position_alpha, s_.solver.flip_fraction};
+    TransferParameters transfer{s_.solver.transfer, s_.solver.position_alpha, s_.solver.flip_fraction};
+    if (transfer.kind == VelocityTransfer::FMPM && !fmpm_now_) transfer.kind = VelocityTransfer::FLIP;  // periodic
     const auto result = gather_and_move(s_.grid, stencils_, s_.fields, s_.particles, transfer, dt, with_gradient, s_.gravity);
     s_.external_work += result.gravity_work;
     if (result.first_outside >= 0)
       fail(result.first_outside, "left the grid domain or has a non-finite velocity");
   }
 
-  /// L from the lumped velocities p/m with the conditions at time t (USF task 1.b-1.d, MUSL 4.a-4.c).
+  /// L from the lumped velocities p/m with the conditions at time t (USF task 1.b-1.d, MUSL 4.a-4.c),
+  /// through the FMPM loop on FMPM steps (tasks 1.c and 4.c).
   void strain_from_momentum(double dt, double t) {
     lumped_velocity(s_.fields, s_.mass_floor, velocity_);
     s_.conditions.apply(velocity_, t);
+    if (fmpm_now_)
+      fmpm_.run(s_.grid, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t, velocity_,
+                workspace_);
     gather_velocity_gradient(s_.grid, stencils_, velocity_, s_.particles);
     update_strain(dt);
   }
@@ -118,6 +169,10 @@ template <int D, class Stencils> class ExplicitStepper {
   Stencils stencils_;
   ScatterWorkspace<D> workspace_;
   std::vector<Vec<D>> velocity_;  // scratch node velocities for USF / MUSL
+  FmpmLoop<D> fmpm_;
+  bool fmpm_now_ = false;         // this step runs the FMPM loop
+  double fmpm_period_ = 0.0;      // periodic FMPM by time or Courant units
+  double next_fmpm_time_ = 0.0;
   double total_mass_ = 0.0;
   double step_dt_ = 0.0;
 };

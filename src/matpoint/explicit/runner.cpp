@@ -169,6 +169,11 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
   s["step_cpu_seconds"] = step_cpu;
   s["particle_steps_per_second"] = step_wall > 0 ? particle_steps / step_wall : 0.0;
   s["particle_steps_per_cpu_second"] = step_cpu > 0 ? particle_steps / step_cpu : 0.0;
+  if (spec.solver.transfer == VelocityTransfer::FMPM || spec.solver.transfer == VelocityTransfer::XPIC) {
+    const auto& stats = stepper.fmpm_statistics();
+    s["fmpm_loops"] = stats.loops;
+    s["fmpm_average_order"] = stats.average_order();
+  }
   s["outputs"] = outputs;
   s["initial"] = energies_json(history.samples.front(), D);
   s["final"] = energies_json(history.samples.back(), D);

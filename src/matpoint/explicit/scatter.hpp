@@ -35,11 +35,12 @@ namespace detail {
 
 template <int D, unsigned What, class Stencils, class Target>
 void scatter_range(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
-                   const Vec<D>& gravity, std::ptrdiff_t begin, std::ptrdiff_t end, Index offset, Target& out) {
+                   const std::vector<Vec<D>>& velocity, const Vec<D>& gravity, std::ptrdiff_t begin,
+                   std::ptrdiff_t end, Index offset, Target& out) {
   for (std::ptrdiff_t p = begin; p < end; ++p) {
     const double m = particles.mass[p];
     Vec<D> mv = Vec<D>::Zero();
-    if constexpr ((What & kScatterMomentum) != 0) mv = m * particles.v[p];
+    if constexpr ((What & kScatterMomentum) != 0) mv = m * velocity[p];
     Mat<D> vs = Mat<D>::Zero();
     Vec<D> mb = Vec<D>::Zero();
     if constexpr ((What & kScatterForce) != 0) {
@@ -66,9 +67,12 @@ template <int D, unsigned What> void zero_fields(GridFields<D>& f, Index lo, Ind
 }  // namespace detail
 
 /// Recomputes the selected node fields from the particles (the fields not selected are untouched).
+/// The momentum is sum_p M_p S_pi U_p with U = `velocity` when given (the FMPM passes), else V_p.
 template <unsigned What, int D, class Stencils>
 void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
-                     const Vec<D>& gravity, GridFields<D>& fields, ScatterWorkspace<D>& ws) {
+                     const Vec<D>& gravity, GridFields<D>& fields, ScatterWorkspace<D>& ws,
+                     const std::vector<Vec<D>>* velocity = nullptr) {
+  const auto& u = velocity != nullptr ? *velocity : particles.v;
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
   int threads = 1;
 #ifdef _OPENMP
@@ -76,7 +80,7 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
 #endif
   if (threads == 1) {
     detail::zero_fields<D, What>(fields, 0, grid.node_count - 1);
-    detail::scatter_range<D, What>(grid, stencils, particles, gravity, 0, n, 0, fields);
+    detail::scatter_range<D, What>(grid, stencils, particles, u, gravity, 0, n, 0, fields);
     return;
   }
   ws.bands.resize(threads);
@@ -100,7 +104,7 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
     if constexpr ((What & kScatterMass) != 0) band.mass.assign(width, 0.0);
     if constexpr ((What & kScatterMomentum) != 0) band.momentum.assign(width, Vec<D>::Zero());
     if constexpr ((What & kScatterForce) != 0) band.force.assign(width, Vec<D>::Zero());
-    detail::scatter_range<D, What>(grid, stencils, particles, gravity, begin, end, band.lo, band);
+    detail::scatter_range<D, What>(grid, stencils, particles, u, gravity, begin, end, band.lo, band);
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (Index i = 0; i < grid.node_count; ++i) {

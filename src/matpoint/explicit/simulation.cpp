@@ -57,10 +57,15 @@ template <int D> Simulation<D> build_simulation(const Spec& spec) {
   return sim;
 }
 
-template <int D> double stable_time_step(const Simulation<D>& sim) {
-  if (sim.solver.dt) return *sim.solver.dt;
+template <int D> double max_wave_speed(const Simulation<D>& sim) {
   double speed = 0.0;
   for (const auto& m : sim.materials) speed = std::max(speed, wave_speed<D>(m));
+  return speed;
+}
+
+template <int D> double stable_time_step(const Simulation<D>& sim) {
+  if (sim.solver.dt) return *sim.solver.dt;
+  double speed = max_wave_speed(sim);
   for (const auto& v : sim.particles.v) speed = std::max(speed, v.norm());
   return sim.solver.courant * sim.grid.min_cell_size() / speed;
 }
@@ -68,6 +73,9 @@ template <int D> double stable_time_step(const Simulation<D>& sim) {
 template Simulation<1> build_simulation<1>(const Spec&);
 template Simulation<2> build_simulation<2>(const Spec&);
 template Simulation<3> build_simulation<3>(const Spec&);
+template double max_wave_speed<1>(const Simulation<1>&);
+template double max_wave_speed<2>(const Simulation<2>&);
+template double max_wave_speed<3>(const Simulation<3>&);
 template double stable_time_step<1>(const Simulation<1>&);
 template double stable_time_step<2>(const Simulation<2>&);
 template double stable_time_step<3>(const Simulation<3>&);

@@ -35,6 +35,9 @@ int ghost_layers(ShapeKind shape);
 /// Throws InputError for bodies that produce no particle.
 template <int D> Simulation<D> build_simulation(const Spec& spec);
 
+/// The largest material wave speed (the speed of the Courant number).
+template <int D> double max_wave_speed(const Simulation<D>& sim);
+
 /// Time step: the input's dt, or courant * h_min / max(largest wave speed, largest particle speed).
 template <int D> double stable_time_step(const Simulation<D>& sim);
 

@@ -22,6 +22,18 @@ template <int D> class VelocityConditions {
   void apply(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass = nullptr,
              Vec<D>* impulse = nullptr, double* work = nullptr) const;
 
+  /// Zeroes every constrained component of v: the condition directions of an FMPM increment
+  /// (Nairn 2026 Table 2, bottom block), so that v+(k) keeps the value set on v+(1) (eq. 12).
+  /// With `mass`, adds to `impulse` the momentum the zeroing removes, -m_i v_i (a = axis): without
+  /// it an increment would conserve momentum, so this is the conditions' share of the increment.
+  void zero_constrained(std::vector<Vec<D>>& v, const std::vector<double>* mass = nullptr,
+                        Vec<D>* impulse = nullptr) const {
+    for (const auto& e : entries_) {
+      if (mass && impulse) (*impulse)[e.axis] -= (*mass)[e.node] * v[e.node][e.axis];
+      v[e.node][e.axis] = 0.0;
+    }
+  }
+
   [[nodiscard]] std::size_t size() const { return entries_.size(); }
 
  private:

@@ -134,12 +134,24 @@ constexpr std::array<Named<ConditionKind>, 3> kConditionKinds{
 constexpr std::array<Named<int>, 6> kFaces{
     {{"x-", 0}, {"x+", 1}, {"y-", 2}, {"y+", 3}, {"z-", 4}, {"z+", 5}}};  // axis = id / 2, side = id % 2
 constexpr std::array<Named<int>, 3> kAxes{{{"x", 0}, {"y", 1}, {"z", 2}}};
-constexpr std::array<Named<UpdateScheme>, 4> kSchemes{{{"usl", UpdateScheme::USL},
+constexpr std::array<Named<UpdateScheme>, 6> kSchemes{{{"usl", UpdateScheme::USL},
                                                        {"usf", UpdateScheme::USF},
                                                        {"musl", UpdateScheme::MUSL},
-                                                       {"usavg", UpdateScheme::USAVG}}};
-constexpr std::array<Named<VelocityTransfer>, 3> kTransfers{
-    {{"flip", VelocityTransfer::FLIP}, {"pic", VelocityTransfer::PIC}, {"blend", VelocityTransfer::Blend}}};
+                                                       {"usl+", UpdateScheme::MUSL},
+                                                       {"usavg", UpdateScheme::USAVG},
+                                                       {"usavg+", UpdateScheme::USAVGPlus}}};
+constexpr std::array<Named<VelocityTransfer>, 5> kTransfers{{{"flip", VelocityTransfer::FLIP},
+                                                            {"pic", VelocityTransfer::PIC},
+                                                            {"blend", VelocityTransfer::Blend},
+                                                            {"fmpm", VelocityTransfer::FMPM},
+                                                            {"xpic", VelocityTransfer::XPIC}}};
+constexpr std::array<Named<FmpmMeasure>, 2> kFmpmMeasures{
+    {{"means", FmpmMeasure::Means}, {"changes", FmpmMeasure::Changes}}};
+constexpr std::array<Named<FmpmBoundaryMethod>, 2> kFmpmBoundaryMethods{
+    {{"incremental", FmpmBoundaryMethod::Incremental}, {"combined", FmpmBoundaryMethod::Combined}}};
+constexpr std::array<Named<FmpmRecursion>, 2> kFmpmRecursions{
+    {{"incremental", FmpmRecursion::Incremental}, {"binomial", FmpmRecursion::Binomial}}};
+constexpr int kMaxFmpmOrder = 1000;
 constexpr std::array<Named<ShapeKind>, 2> kShapeKinds{
     {{"linear", ShapeKind::Linear}, {"bspline2", ShapeKind::BSpline2}}};
 constexpr std::array<Named<DeformationUpdate>, 2> kDeformationUpdates{
@@ -450,7 +462,7 @@ class SpecReader {
     read_conditions(top.optional("boundary_conditions"));
     read_loads(Object(top.optional("loads"), {"gravity"}));
     read_solver(Object(top.required("solver"),
-                       {"scheme", "transfer", "position_alpha", "flip_fraction", "shape",
+                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
                         "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance"}));
     read_output(
         Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields"}));
@@ -903,7 +915,9 @@ class SpecReader {
     set_if(out.scheme, s.optional("scheme").choice(kSchemes));
     const auto transfer = s.optional("transfer").choice(kTransfers);
     set_if(out.transfer, transfer);
+    if (out.transfer == VelocityTransfer::FMPM) out.position_alpha = 0.5;  // Nairn 2026 §2.1: consistent
     set_if(out.position_alpha, s.optional("position_alpha").number(kUnitInterval));
+    read_fmpm(s, out);
     const Value flip_fraction = s.optional("flip_fraction");
     if (out.transfer == VelocityTransfer::Blend)
       out.flip_fraction = flip_fraction.number(kUnitInterval).value_or(0.99);
@@ -920,6 +934,51 @@ class SpecReader {
     set_if(out.end_time, s.required("end_time").number(kPositive));
     set_if(out.max_steps, s.optional("max_steps").integer(0));
     set_if(out.mass_tolerance, s.optional("mass_tolerance").number({0, 1, false, true}));
+  }
+
+  /// solver.fmpm (transfer "fmpm") or solver.xpic (transfer "xpic"): Nairn 2026 §2.2-3.4.
+  void read_fmpm(const Object& s, SolverSpec& out) const {
+    const bool fmpm = out.transfer == VelocityTransfer::FMPM, xpic = out.transfer == VelocityTransfer::XPIC;
+    for (const char* key : {"fmpm", "xpic"}) {
+      const Value v = s.optional(key);
+      if (v.present() && !(key == std::string_view("fmpm") ? fmpm : xpic))
+        v.fail(std::string("no ") + key + " unless transfer is \"" + key + "\"");
+    }
+    if (xpic) {
+      const Object x(s.optional("xpic"), {"order"});
+      set_if(out.fmpm.order, x.optional("order").integer(1, kMaxFmpmOrder));
+      return;
+    }
+    if (!fmpm) return;
+    const Object f(s.optional("fmpm"), {"order", "blend", "dynamic", "periodic", "boundary_method", "recursion"});
+    FmpmSpec& k = out.fmpm;
+    set_if(k.order, f.optional("order").integer(1, kMaxFmpmOrder));
+    const Object blend(f.optional("blend"), {"with", "factor"});
+    if (blend.valid()) {
+      set_if(k.blend_with, blend.required("with").integer(1, 2));
+      set_if(k.blend_factor, blend.required("factor").number(kUnitInterval));
+    }
+    const Object dynamic(f.optional("dynamic"), {"measure", "limit"});
+    if (dynamic.valid()) {
+      set_if(k.measure, dynamic.required("measure").choice(kFmpmMeasures));
+      set_if(k.limit, dynamic.required("limit").number(kPositive));
+    }
+    const Object periodic(f.optional("periodic"), {"courant", "steps", "time"});
+    if (periodic.valid()) {
+      int given = 0;
+      if (const auto c = periodic.optional("courant").number(kPositive)) {
+        k.period = FmpmPeriod::Courant, k.period_value = *c, ++given;
+      }
+      if (const auto n = periodic.optional("steps").integer(1)) {
+        k.period = FmpmPeriod::Steps, k.period_value = static_cast<double>(*n), ++given;
+      }
+      if (const auto t = periodic.optional("time").number(kPositive)) {
+        k.period = FmpmPeriod::Time, k.period_value = *t, ++given;
+      }
+      if (given != 1) periodic.value().fail("an object with exactly one of the keys courant, steps or time");
+    }
+    set_if(k.boundary_method, f.optional("boundary_method").choice(kFmpmBoundaryMethods));
+    set_if(k.recursion, f.optional("recursion").choice(kFmpmRecursions));
   }
 
   void read_output(const Object& o) {

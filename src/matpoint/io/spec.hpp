@@ -13,8 +13,8 @@ namespace matpoint {
 
 using Triple = std::array<double, 3>;  // unused trailing components are zero
 
-enum class UpdateScheme { USL, USF, MUSL, USAVG };        // Nairn 2026 §2.1 (MUSL = "USL+")
-enum class VelocityTransfer { FLIP, PIC, Blend };          // particle velocity update
+enum class UpdateScheme { USL, USF, MUSL, USAVG, USAVGPlus };  // Nairn 2026 §2.1 (MUSL = "USL+")
+enum class VelocityTransfer { FLIP, PIC, Blend, FMPM, XPIC };   // particle velocity update
 enum class ShapeKind { Linear, BSpline2 };                 // grid basis
 enum class DeformationUpdate { Exponential, Linear };      // dF = exp(L dt) or I + L dt
 enum class MaterialModel { LinearElastic, NeoHookean };
@@ -78,11 +78,30 @@ struct LoadSpec {
   Triple gravity{};
 };
 
+/// FMPM(k) and XPIC(k) settings (Nairn 2026 §2.2-3.4; docs/theory/fmpm.md).
+enum class FmpmMeasure { None, Means, Changes };        // dynamic FMPM convergence measure (§3.4)
+enum class FmpmBoundaryMethod { Incremental, Combined };  // §3.1: new method, or the old "combined"
+enum class FmpmRecursion { Incremental, Binomial };     // eq. (6), or eq. (4) (for verification)
+enum class FmpmPeriod { EveryStep, Courant, Steps, Time };
+
+struct FmpmSpec {
+  int order = 2;                  // k: the number of terms of the series m~_k^-1 (k = 1: lumped)
+  int blend_with = 0;             // 0: no blending; m >= 1: blend with FMPM(m) (§3.3)
+  double blend_factor = 1.0;      // alpha_b
+  FmpmMeasure measure = FmpmMeasure::None;
+  double limit = 0.0;             // dynamic FMPM: stop when the measure falls below this
+  FmpmBoundaryMethod boundary_method = FmpmBoundaryMethod::Incremental;
+  FmpmRecursion recursion = FmpmRecursion::Incremental;
+  FmpmPeriod period = FmpmPeriod::EveryStep;  // periodic FMPM: FLIP in the other steps
+  double period_value = 0.0;      // Courant units C_X, a step count, or a time
+};
+
 struct SolverSpec {
   UpdateScheme scheme = UpdateScheme::MUSL;  // see docs/input.md: robust with FLIP, energy within 0.1 % in two-disks
   VelocityTransfer transfer = VelocityTransfer::FLIP;
-  double position_alpha = 1.0;  // Nairn 2026 eq. (7): weight of the acceleration term in the position update
+  double position_alpha = 1.0;  // Nairn 2026 eq. (7) alpha_t; default 1 for FLIP/PIC/blend, 1/2 for FMPM
   double flip_fraction = 1.0;   // Blend: V = f V_FLIP + (1 - f) V_PIC
+  FmpmSpec fmpm;                // transfer fmpm or xpic
   ShapeKind shape = ShapeKind::Linear;
   DeformationUpdate deformation_update = DeformationUpdate::Exponential;
   std::optional<double> dt;  // fixed time step, or
