@@ -3,6 +3,7 @@
 #include "matpoint/core/version.hpp"
 #include "matpoint/explicit/runner.hpp"
 #include "matpoint/io/input.hpp"
+#include "stability_scan_command.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -88,6 +89,9 @@ int main(int argc, char** argv) {
   auto* plot = app.add_subcommand("plot", "draw plots/*.png of an output folder");
   plot->add_option("dir", plot_dir, "output folder of a run")->required();
 
+  StabilityScanCommand stability_scan;
+  stability_scan.add_to(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -95,6 +99,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*check) return command_check(input);
+    if (stability_scan.chosen()) return stability_scan.run();
     if (*plot) return draw_plots(plot_dir, options.scripts_dir) ? kExitOk : kExitOther;
     options.out_dir = out_dir;
     options.progress = !quiet;

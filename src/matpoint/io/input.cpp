@@ -624,7 +624,8 @@ class SpecReader {
   }
 
   BodySpec read_body(const Value& v, std::size_t index) {
-    const Object b(v, {"name", "material", "shape", "particles_per_cell", "velocity", "velocity_sine"});
+    const Object b(v,
+                   {"name", "material", "shape", "particles_per_cell", "velocity", "velocity_sine", "velocity_noise"});
     BodySpec out;
     out.name = "body" + std::to_string(index);
     if (!b.valid()) return out;
@@ -634,6 +635,11 @@ class SpecReader {
     set_if(out.particles_per_cell, b.optional("particles_per_cell").integer(1, 10));
     set_if(out.velocity, b.optional("velocity").vector(dim_));
     read_sine(Object(b.optional("velocity_sine"), {"amplitude", "wave_vector", "phase"}), out);
+    const Object noise(b.optional("velocity_noise"), {"amplitude", "seed"});
+    if (noise.valid()) {
+      set_if(out.noise_amplitude, noise.required("amplitude").number(kNonNegative));
+      if (const auto seed = noise.optional("seed").integer(0, UINT_MAX)) out.noise_seed = static_cast<unsigned>(*seed);
+    }
     return out;
   }
 

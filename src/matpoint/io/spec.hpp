@@ -52,6 +52,10 @@ struct BodySpec {
   bool has_sine_velocity = false;
   Triple sine_amplitude{}, sine_wave_vector{};
   double sine_phase = 0;
+  // Optional seeded Gaussian noise added to every velocity component: amplitude * N(0, 1), the
+  // seed of a stability scan (Gong 2015 extraction S1).
+  double noise_amplitude = 0;
+  unsigned noise_seed = 1;
 };
 
 /// A scalar function of time: a constant (one value) or a piecewise-linear table, held constant

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 namespace matpoint {
 
@@ -106,6 +107,12 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
     int a = 0;
     while (a < D && ++cell[a] > last[a]) cell[a] = first[a], ++a;
     if (a == D) break;
+  }
+  if (body.noise_amplitude > 0.0) {  // in generation order: the same seed gives the same noise
+    std::mt19937 rng(body.noise_seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (std::size_t p = before; p < particles.size(); ++p)
+      for (int a = 0; a < D; ++a) particles.v[p][a] += body.noise_amplitude * normal(rng);
   }
   return particles.size() - before;
 }

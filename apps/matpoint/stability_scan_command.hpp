@@ -1,0 +1,27 @@
+// `matpoint stability-scan`: the empirical stability limit of an input (analysis/stability_scan.hpp).
+#pragma once
+
+#include "matpoint/analysis/stability_scan.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+namespace matpoint {
+
+class StabilityScanCommand {
+ public:
+  void add_to(CLI::App& app);
+  [[nodiscard]] bool chosen() const { return command_ != nullptr && command_->parsed(); }
+  [[nodiscard]] int run() const;
+
+ private:
+  CLI::App* command_ = nullptr;
+  std::string input_;
+  ScanOptions options_;
+  std::vector<std::string> sets_;
+  bool json_ = false;
+};
+
+}  // namespace matpoint
