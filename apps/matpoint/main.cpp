@@ -1,4 +1,5 @@
 // The matpoint command line: run, check, plot (DESIGN.md "Interfaces").
+#include "dispersion_command.hpp"
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/version.hpp"
 #include "matpoint/explicit/runner.hpp"
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
   std::string plot_dir;
   auto* plot = app.add_subcommand("plot", "draw plots/*.png of an output folder");
   plot->add_option("dir", plot_dir, "output folder of a run")->required();
+  const DispersionCommand dispersion = add_dispersion_command(app, options.scripts_dir);
 
   StabilityScanCommand stability_scan;
   stability_scan.add_to(app);
@@ -98,6 +100,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitBadInput;
   }
   try {
+    if (*dispersion.app) return dispersion.run();
     if (*check) return command_check(input);
     if (stability_scan.chosen()) return stability_scan.run();
     if (*plot) return draw_plots(plot_dir, options.scripts_dir) ? kExitOk : kExitOther;
