@@ -22,7 +22,7 @@ void StabilityScanCommand::add_to(CLI::App& app) {
                        "unstable when the velocity scale (sqrt of kinetic energy) grows by more than this factor")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command_->add_option("--set", sets_, "PATH=JSON: set an input value before the scan, e.g. solver.fmpm.order=4");
+  command_->add_option("--set", sets_, "PATH=JSON: set an input value before the scan, e.g. solver.fmpm.order=4 (null removes it)");
   command_->add_option("--threads", options_.threads, "OpenMP threads per run")->capture_default_str();
   command_->add_flag("--json", json_, "print the result as JSON");
 }

@@ -11,13 +11,15 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 9> kMeasures{{
+inline constexpr std::array<MeasureInfo, 11> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |E(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy"},
     {"max_relative_momentum_error",
      "max over output times of |P(t) - P(0) - I_ext(t)| / sum_p m_p |V_p(0)| (I_ext: impulse of gravity)"},
     {"min_jacobian", "smallest det F of any particle at any output time"},
     {"final_time", "simulated time reached at the end of the run"},
+    {"kinetic_energy_change", "K(end) / K(0) - 1: the signed relative change of kinetic energy over the run"},
+    {"total_energy_change", "(E(end) - W_ext(end)) / E(0) - 1: the signed relative change of total energy"},
     {"final_com_velocity_x", "x velocity of the centre of mass of all bodies at the last output"},
     {"final_com_velocity_y", "y velocity of the centre of mass of all bodies at the last output"},
     {"final_com_velocity_z", "z velocity of the centre of mass of all bodies at the last output"},

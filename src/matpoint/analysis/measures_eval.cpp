@@ -89,6 +89,14 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
     for (const auto& s : history.samples) j = std::min(j, s.min_jacobian);
     return history.samples.empty() ? kNaN : j;
   }
+  if (name == "kinetic_energy_change" || name == "total_energy_change") {
+    if (history.samples.empty()) return kNaN;
+    const auto& first = history.samples.front();
+    const auto& last = history.samples.back();
+    if (name == "kinetic_energy_change") return last.kinetic_energy / first.kinetic_energy - 1.0;
+    const double e0 = first.kinetic_energy + first.strain_energy;
+    return (last.kinetic_energy + last.strain_energy - last.external_work) / e0 - 1.0;
+  }
   if (name == "final_time") return history.samples.empty() ? kNaN : history.samples.back().time;
   if (name.starts_with("final_com_velocity_")) {
     const int axis = name.back() - 'x';

@@ -14,17 +14,35 @@
 namespace matpoint {
 
 void set_json_path(nlohmann::json& root, const std::string& path, const nlohmann::json& value) {
-  nlohmann::json* node = &root;
   std::stringstream keys(path);
   std::string key;
   std::vector<std::string> parts;
   while (std::getline(keys, key, '.')) parts.push_back(key);
-  for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
-    if (!node->is_object()) *node = nlohmann::json::object();
-    node = &(*node)[parts[k]];
+  nlohmann::json* node = &root;
+  if (value.is_null()) {  // null removes the key
+    for (std::size_t k = 0; k + 1 < parts.size() && node != nullptr; ++k) {
+      const auto& part = parts[k];
+      if (node->is_array() && part.find_first_not_of("0123456789") == std::string::npos &&
+          std::stoul(part) < node->size())
+        node = &(*node)[std::stoul(part)];
+      else if (node->is_object() && node->contains(part))
+        node = &(*node)[part];
+      else
+        node = nullptr;
+    }
+    if (node != nullptr && node->is_object()) node->erase(parts.back());
+    return;
   }
-  if (!node->is_object()) *node = nlohmann::json::object();
-  (*node)[parts.back()] = value;
+  for (const auto& part : parts) {
+    const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+    if (index && node->is_array() && std::stoul(part) < node->size()) {
+      node = &(*node)[std::stoul(part)];  // an element of an existing array, e.g. bodies.0
+      continue;
+    }
+    if (!node->is_object()) *node = nlohmann::json::object();
+    node = &(*node)[part];
+  }
+  *node = value;
 }
 
 ScanRun classify_run(const nlohmann::json& input, const ScanOptions& options, double value) {

@@ -37,7 +37,8 @@ struct ScanResult {
   [[nodiscard]] double limit() const { return 0.5 * (stable + unstable); }
 };
 
-/// Sets `path` (keys separated by dots; objects created when missing) of `root` to `value`.
+/// Sets `path` (keys separated by dots, array elements by their index; objects created when
+/// missing) of `root` to `value`; a null value removes the key instead.
 void set_json_path(nlohmann::json& root, const std::string& path, const nlohmann::json& value);
 
 /// Runs the bisection; throws InputError when the input (with its overrides) is invalid.
