@@ -12,6 +12,7 @@ template <int D> struct Diagnostics {
   double strain_energy = 0.0;   // sum V0_p W(F_p)
   Vec<D> momentum = Vec<D>::Zero();
   double min_jacobian = 1.0, max_jacobian = 1.0;
+  double rms_velocity_change = 0.0;  // sqrt(mean_p |V_p - V_p(0)|^2)
   std::vector<double> body_kinetic, body_strain, body_mass;
   std::vector<Vec<D>> body_momentum;
 };

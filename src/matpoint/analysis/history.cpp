@@ -10,7 +10,7 @@ std::string History::csv() const {
   std::ostringstream out;
   out << "time,step,kinetic_energy,strain_energy,total_energy,external_work,energy_balance";
   for (int a = 0; a < dim; ++a) out << ",momentum_" << axis[a];
-  out << ",min_jacobian";
+  out << ",min_jacobian,rms_velocity_change";
   for (int b = 0; b < body_count; ++b) {
     out << ",body" << b << "_kinetic_energy,body" << b << "_strain_energy";
     for (int a = 0; a < dim; ++a) out << ",body" << b << "_momentum_" << axis[a];
@@ -22,7 +22,7 @@ std::string History::csv() const {
     out << s.time << ',' << s.step << ',' << s.kinetic_energy << ',' << s.strain_energy << ',' << total << ','
         << s.external_work << ',' << total - s.external_work;
     for (int a = 0; a < dim; ++a) out << ',' << s.momentum[a];
-    out << ',' << s.min_jacobian;
+    out << ',' << s.min_jacobian << ',' << s.rms_velocity_change;
     for (int b = 0; b < body_count; ++b) {
       out << ',' << s.body_kinetic[b] << ',' << s.body_strain[b];
       for (int a = 0; a < dim; ++a) out << ',' << s.body_momentum[b][a];

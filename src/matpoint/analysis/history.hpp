@@ -14,6 +14,7 @@ struct HistorySample {
   double kinetic_energy = 0.0, strain_energy = 0.0, external_work = 0.0;
   std::array<double, 3> momentum{}, external_impulse{};
   double min_jacobian = 1.0;
+  double rms_velocity_change = 0.0;
   std::vector<double> body_kinetic, body_strain, body_mass;
   std::vector<std::array<double, 3>> body_momentum, body_com_velocity;
 };

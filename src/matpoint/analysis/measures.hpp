@@ -11,12 +11,15 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 11> kMeasures{{
+inline constexpr std::array<MeasureInfo, 12> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |E(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy"},
     {"max_relative_momentum_error",
      "max over output times of |P(t) - P(0) - I_ext(t)| / sum_p m_p |V_p(0)| (I_ext: impulse of gravity)"},
     {"min_jacobian", "smallest det F of any particle at any output time"},
+    {"mean_rms_velocity_change",
+     "mean over the output times after t = 0 of sqrt(mean_p |V_p(t) - V_p(0)|^2): the velocity error of a "
+     "problem whose exact particle velocities stay at their initial values (Nairn 2026 §3.1)"},
     {"final_time", "simulated time reached at the end of the run"},
     {"kinetic_energy_change", "K(end) / K(0) - 1: the signed relative change of kinetic energy over the run"},
     {"total_energy_change", "(E(end) - W_ext(end)) / E(0) - 1: the signed relative change of total energy"},

@@ -97,6 +97,12 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
     const double e0 = first.kinetic_energy + first.strain_energy;
     return (last.kinetic_energy + last.strain_energy - last.external_work) / e0 - 1.0;
   }
+  if (name == "mean_rms_velocity_change") {
+    if (history.samples.size() < 2) return kNaN;
+    double sum = 0.0;
+    for (std::size_t k = 1; k < history.samples.size(); ++k) sum += history.samples[k].rms_velocity_change;
+    return sum / static_cast<double>(history.samples.size() - 1);
+  }
   if (name == "final_time") return history.samples.empty() ? kNaN : history.samples.back().time;
   if (name.starts_with("final_com_velocity_")) {
     const int axis = name.back() - 'x';

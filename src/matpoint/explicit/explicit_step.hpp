@@ -86,6 +86,8 @@ template <int D, class Stencils> class ExplicitStepper {
  private:
   template <unsigned What> void scatter() {
     scatter_to_grid<What>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields, workspace_);
+    if constexpr ((What & kScatterMass) != 0)
+      if (s_.conditions.has_walls()) s_.conditions.select_wall_nodes(s_.time, s_.fields.mass, s_.mass_floor);
   }
 
   /// Periodic FMPM (Nairn 2026 §3.3, NairnMPM's rule): a step runs the loop when t + dt reaches

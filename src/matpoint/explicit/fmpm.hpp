@@ -14,6 +14,7 @@
 #include "matpoint/io/spec.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -22,7 +23,8 @@ namespace matpoint {
 /// Counts of a run's FMPM loops (dynamic FMPM reports the average order reached).
 struct FmpmStatistics {
   long loops = 0;
-  long passes = 0;  // sum over loops of (order reached - 1)
+  long passes = 0;       // sum over loops of (order reached - 1)
+  double seconds = 0.0;  // wall time inside the loops
   [[nodiscard]] double average_order() const {
     return loops > 0 ? 1.0 + static_cast<double>(passes) / static_cast<double>(loops) : 0.0;
   }
@@ -42,6 +44,7 @@ template <int D> class FmpmLoop {
     const int k = spec_.order;
     statistics_.loops += 1;
     if (k <= 1) return 1;
+    const auto start = std::chrono::steady_clock::now();
     const int order = spec_.recursion == FmpmRecursion::Binomial
                           ? run_binomial(grid, stencils, particles, mass, mass_floor, v, ws)
                           : run_incremental(grid, stencils, particles, mass, mass_floor, conditions, v, ws, impulse);
@@ -50,6 +53,7 @@ template <int D> class FmpmLoop {
       conditions.apply(v, t, impulse ? &mass : nullptr, impulse, work ? work : &ignored_work);
     }
     statistics_.passes += order - 1;
+    statistics_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return order;
   }
 

@@ -45,6 +45,7 @@ template <int D> HistorySample sample(const Simulation<D>& sim, int body_count) 
   s.momentum = pad<D>(d.momentum);
   s.external_impulse = pad<D>(sim.external_impulse);
   s.min_jacobian = d.min_jacobian;
+  s.rms_velocity_change = d.rms_velocity_change;
   s.body_kinetic = d.body_kinetic;
   s.body_strain = d.body_strain;
   s.body_mass = d.body_mass;
@@ -173,6 +174,12 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
     const auto& stats = stepper.fmpm_statistics();
     s["fmpm_loops"] = stats.loops;
     s["fmpm_average_order"] = stats.average_order();
+    s["fmpm_seconds"] = stats.seconds;
+    // Nairn 2026 eq. (3): F = cost of one pass / cost of a step without the loop.
+    const double other = step_wall - stats.seconds;
+    if (stats.passes > 0 && sim.step > 0 && other > 0)
+      s["fmpm_pass_cost_fraction"] = (stats.seconds / static_cast<double>(stats.passes)) /
+                                     (other / static_cast<double>(sim.step));
   }
   s["outputs"] = outputs;
   s["initial"] = energies_json(history.samples.front(), D);

@@ -46,6 +46,7 @@ template <int D> Simulation<D> build_simulation(const Spec& spec) {
                               "a shape that contains at least one sub-cell centre (enlarge it or refine the grid)"});
   }
   if (!empty_bodies.empty()) throw InputError(std::move(empty_bodies));
+  sim.initial_velocity = sim.particles.v;  // generation order = id order
   sort_by_cell(sim.grid, sim.particles);
   update_stress<D>(sim.materials, sim.particles);
 

@@ -22,6 +22,8 @@ template <int D> struct Simulation {
   SolverSpec solver;
   double mass_floor = 0.0;  // nodes at or below this mass are inactive
 
+  std::vector<Vec<D>> initial_velocity;  // V_p(0) by particle id (velocity-change diagnostics)
+
   double time = 0.0;
   long step = 0;
   double external_work = 0.0;                        // gravity + moving walls, accumulated

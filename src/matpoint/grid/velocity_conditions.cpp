@@ -22,9 +22,13 @@ template <int D> bool node_selected(const VelocityConditionSpec& c, const Grid<D
 
 template <int D>
 VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpec>& specs, const Grid<D>& grid) {
+  grid_ = grid;
   for (const auto& c : specs) {
     std::vector<std::pair<int, int>> axis_function;  // (axis, function)
     switch (c.kind) {
+      case ConditionKind::MovingWall:
+        walls_.push_back(c);
+        continue;
       case ConditionKind::Fixed:
         for (int a = 0; a < D; ++a) axis_function.emplace_back(a, -1);
         break;
@@ -46,6 +50,26 @@ VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpe
 }
 
 template <int D>
+void VelocityConditions<D>::select_wall_nodes(double t, const std::vector<double>& mass, double mass_floor) {
+  wall_entries_.clear();
+  for (const auto& w : walls_) {
+    const int a = w.normal_axis;
+    const double x_wall = w.wall_position + w.wall_velocity.integral(t);
+    const double v_wall = w.wall_velocity(t);
+    const double tol = 1e-9 * grid_.h[a];
+    for (Index node = 0; node < grid_.node_count; ++node) {
+      if (!(mass[node] > mass_floor)) continue;
+      const double x = grid_.node_position(node)[a];
+      const bool controlled = w.material_below ? x >= x_wall - w.depth - tol : x <= x_wall + w.depth + tol;
+      if (!controlled) continue;
+      // v_i = v_wall + grad v (x_i - x_wall), grad v = v_wall / (x_wall - x_c) for a stretch about x_c
+      const double value = w.stretch_about ? v_wall * (x - *w.stretch_about) / (x_wall - *w.stretch_about) : v_wall;
+      wall_entries_.push_back({node, a, value});
+    }
+  }
+}
+
+template <int D>
 void VelocityConditions<D>::apply(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass,
                                   Vec<D>* impulse, double* work) const {
   std::vector<double> value(functions_.size());
@@ -58,6 +82,14 @@ void VelocityConditions<D>::apply(std::vector<Vec<D>>& v, double t, const std::v
       *work += dp * set;
     }
     v[e.node][e.axis] = set;
+  }
+  for (const auto& e : wall_entries_) {
+    if (mass && impulse && work) {
+      const double dp = (*mass)[e.node] * (e.value - v[e.node][e.axis]);
+      (*impulse)[e.axis] += dp;
+      *work += dp * e.value;
+    }
+    v[e.node][e.axis] = e.value;
   }
 }
 

@@ -16,6 +16,11 @@ template <int D> class VelocityConditions {
   VelocityConditions() = default;
   VelocityConditions(const std::vector<VelocityConditionSpec>& specs, const Grid<D>& grid);
 
+  /// Moving walls (Nairn 2026 §3.1): selects the nodes each wall controls at time t (the start of
+  /// the step, where the shape functions are evaluated) and their velocities. Call once per step
+  /// after the nodal masses are known.
+  void select_wall_nodes(double t, const std::vector<double>& mass, double mass_floor);
+
   /// Sets every constrained component of v at time t. Where mass is given, adds to `impulse` the
   /// momentum the constraint injects (m (v_set - v_free)) and to `work` that impulse times the
   /// prescribed velocity: the work done by a moving wall (zero for fixed ones).
@@ -28,13 +33,17 @@ template <int D> class VelocityConditions {
   /// it an increment would conserve momentum, so this is the conditions' share of the increment.
   void zero_constrained(std::vector<Vec<D>>& v, const std::vector<double>* mass = nullptr,
                         Vec<D>* impulse = nullptr) const {
-    for (const auto& e : entries_) {
-      if (mass && impulse) (*impulse)[e.axis] -= (*mass)[e.node] * v[e.node][e.axis];
-      v[e.node][e.axis] = 0.0;
-    }
+    auto zero = [&](Index node, int axis) {
+      if (mass && impulse) (*impulse)[axis] -= (*mass)[node] * v[node][axis];
+      v[node][axis] = 0.0;
+    };
+    for (const auto& e : entries_) zero(e.node, e.axis);
+    for (const auto& e : wall_entries_) zero(e.node, e.axis);
   }
 
-  [[nodiscard]] std::size_t size() const { return entries_.size(); }
+  [[nodiscard]] bool has_walls() const { return !walls_.empty(); }
+
+  [[nodiscard]] std::size_t size() const { return entries_.size() + wall_entries_.size(); }
 
  private:
   struct Entry {
@@ -42,8 +51,16 @@ template <int D> class VelocityConditions {
     int axis;
     int function;  // index into functions_, or -1 for zero
   };
+  struct WallEntry {
+    Index node;
+    int axis;
+    double value;
+  };
   std::vector<Entry> entries_;
   std::vector<TimeFunction> functions_;
+  std::vector<VelocityConditionSpec> walls_;
+  std::vector<WallEntry> wall_entries_;  // this step's wall nodes
+  Grid<D> grid_;
 };
 
 }  // namespace matpoint

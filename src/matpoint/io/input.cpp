@@ -37,6 +37,23 @@ double TimeFunction::operator()(double t) const {
   return values[k - 1] + s * (values[k] - values[k - 1]);
 }
 
+double TimeFunction::integral(double t) const {
+  if (times.empty()) return (values.empty() ? 0.0 : values.front()) * t;
+  double sum = 0.0, t0 = 0.0;
+  auto add = [&](double a, double b) {  // integral over [a, b] of the interpolant, a < b
+    if (b > a) sum += 0.5 * ((*this)(a) + (*this)(b)) * (b - a);
+  };
+  for (double knot : times) {
+    if (knot >= t) break;
+    if (knot > t0) {
+      add(t0, knot);
+      t0 = knot;
+    }
+  }
+  add(t0, t);
+  return sum;
+}
+
 namespace {
 
 using nlohmann::json;
@@ -129,8 +146,11 @@ constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
     {{"log_j", NeoHookeanVolumetric::LogJ}, {"half_j_squared", NeoHookeanVolumetric::HalfJSquared}}};
 constexpr std::array<Named<BodyShape>, 3> kShapes{
     {{"box", BodyShape::Box}, {"disk", BodyShape::Disk}, {"polygon", BodyShape::Polygon}}};
-constexpr std::array<Named<ConditionKind>, 3> kConditionKinds{
-    {{"fixed", ConditionKind::Fixed}, {"slip", ConditionKind::Slip}, {"velocity", ConditionKind::Velocity}}};
+constexpr std::array<Named<ConditionKind>, 4> kConditionKinds{{{"fixed", ConditionKind::Fixed},
+                                                                {"slip", ConditionKind::Slip},
+                                                                {"velocity", ConditionKind::Velocity},
+                                                                {"moving_wall", ConditionKind::MovingWall}}};
+constexpr std::array<Named<bool>, 2> kMaterialSides{{{"below", true}, {"above", false}}};
 constexpr std::array<Named<int>, 6> kFaces{
     {{"x-", 0}, {"x+", 1}, {"y-", 2}, {"y+", 3}, {"z-", 4}, {"z+", 5}}};  // axis = id / 2, side = id % 2
 constexpr std::array<Named<int>, 3> kAxes{{{"x", 0}, {"y", 1}, {"z", 2}}};
@@ -773,8 +793,34 @@ class SpecReader {
   // --- boundary conditions ---
 
   void read_conditions(const Value& list) {
-    for (const auto& item : list.elements("an array of boundary condition objects"))
-      spec_.conditions.push_back(read_condition(Object(item, {"face", "box", "type", "normal", "velocity"})));
+    for (const auto& item : list.elements("an array of boundary condition objects")) {
+      const bool wall = item.get().is_object() && item.get().value("type", json()) == "moving_wall";
+      if (wall)
+        spec_.conditions.push_back(read_moving_wall(
+            Object(item, {"type", "axis", "position", "material", "velocity", "depth", "stretch_about"})));
+      else
+        spec_.conditions.push_back(read_condition(Object(item, {"face", "box", "type", "normal", "velocity"})));
+    }
+  }
+
+  /// {"type": "moving_wall", "axis", "position", "material": "below"|"above", "velocity", "depth",
+  ///  "stretch_about"} (Nairn 2026 §3.1).
+  VelocityConditionSpec read_moving_wall(const Object& c) const {
+    VelocityConditionSpec out;
+    out.kind = ConditionKind::MovingWall;
+    out.on_face = false;
+    if (!c.valid()) return out;
+    if (const auto axis = c.required("axis").choice(kAxes)) {
+      out.normal_axis = *axis;
+      if (dim_ != 0 && *axis >= dim_) c.required("axis").fail("an axis of the grid (" + std::to_string(dim_) + "-D)");
+    }
+    set_if(out.wall_position, c.required("position").number());
+    set_if(out.material_below, c.required("material").choice(kMaterialSides));
+    const std::string expected = "a number (a constant wall velocity) or {\"table\": [[t, v], ...]}";
+    if (auto v = read_time_function(c.required("velocity"), expected)) out.wall_velocity = *v;
+    set_if(out.depth, c.required("depth").number(kNonNegative));
+    out.stretch_about = c.optional("stretch_about").number();
+    return out;
   }
 
   VelocityConditionSpec read_condition(const Object& c) const {

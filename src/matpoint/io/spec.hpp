@@ -64,9 +64,11 @@ struct TimeFunction {
   std::vector<double> times;   // empty for a constant
   std::vector<double> values;  // one value for a constant
   [[nodiscard]] double operator()(double t) const;
+  /// The integral from 0 to t (t >= 0), exact for the piecewise-linear table.
+  [[nodiscard]] double integral(double t) const;
 };
 
-enum class ConditionKind { Fixed, Slip, Velocity };
+enum class ConditionKind { Fixed, Slip, Velocity, MovingWall };
 
 struct VelocityConditionSpec {
   bool on_face = true;  // face of the domain, or a box of nodes
@@ -76,6 +78,14 @@ struct VelocityConditionSpec {
   ConditionKind kind = ConditionKind::Fixed;
   int normal_axis = 0;  // Slip: the constrained (normal) axis; a face's own axis by default
   std::array<std::optional<TimeFunction>, 3> velocity;  // Velocity: prescribed components, empty = free
+  // MovingWall (Nairn 2026 §3.1): a plane x_axis = position + integral of wall_velocity that sets
+  // the axis velocity of the nodes with mass on its far side and of those within `depth` inside
+  // the material; uniform wall velocity, or a linear profile through the fixed point stretch_about.
+  double wall_position = 0;
+  bool material_below = true;  // the material lies at smaller coordinates than the wall
+  TimeFunction wall_velocity;
+  double depth = 0;
+  std::optional<double> stretch_about;
 };
 
 struct LoadSpec {
