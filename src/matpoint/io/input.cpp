@@ -645,7 +645,8 @@ class SpecReader {
 
   BodySpec read_body(const Value& v, std::size_t index) {
     const Object b(v,
-                   {"name", "material", "shape", "particles_per_cell", "velocity", "velocity_sine", "velocity_noise"});
+                   {"name", "material", "shape", "particles_per_cell", "velocity", "velocity_sine", "velocity_gradient",
+                    "velocity_noise"});
     BodySpec out;
     out.name = "body" + std::to_string(index);
     if (!b.valid()) return out;
@@ -655,6 +656,7 @@ class SpecReader {
     set_if(out.particles_per_cell, b.optional("particles_per_cell").integer(1, 10));
     set_if(out.velocity, b.optional("velocity").vector(dim_));
     read_sine(Object(b.optional("velocity_sine"), {"amplitude", "wave_vector", "phase"}), out);
+    read_velocity_gradient(b.optional("velocity_gradient"), out);
     const Object noise(b.optional("velocity_noise"), {"amplitude", "seed"});
     if (noise.valid()) {
       set_if(out.noise_amplitude, noise.required("amplitude").number(kNonNegative));
@@ -780,6 +782,20 @@ class SpecReader {
     std::vector<std::string> parts;
     for (int a = 0; a < dim_; ++a) parts.push_back(format_number(x[a]));
     return "[" + join(parts, false) + "]";
+  }
+
+  /// A dim x dim matrix as an array of rows: V += G x.
+  void read_velocity_gradient(const Value& v, BodySpec& out) const {
+    if (!v.present()) return;
+    const std::string expected = "an array of " + std::to_string(dim_) + " rows of " + numbers_text(dim_, kAnyNumber);
+    const auto rows = v.elements(expected, 1);
+    if (dim_ != 0 && rows.size() != static_cast<std::size_t>(dim_) && !rows.empty()) {
+      v.fail(expected);
+      return;
+    }
+    for (std::size_t r = 0; r < rows.size() && r < 3; ++r)
+      if (const auto row = rows[r].vector(dim_)) out.velocity_gradient[r] = *row;
+    out.has_velocity_gradient = true;
   }
 
   void read_sine(const Object& s, BodySpec& out) const {

@@ -52,6 +52,9 @@ struct BodySpec {
   bool has_sine_velocity = false;
   Triple sine_amplitude{}, sine_wave_vector{};
   double sine_phase = 0;
+  // Optional linear part: V += velocity_gradient x (rows: components), e.g. a uniform stretching.
+  bool has_velocity_gradient = false;
+  std::array<Triple, 3> velocity_gradient{};
   // Optional seeded Gaussian noise added to every velocity component: amplitude * N(0, 1), the
   // seed of a stability scan (Gong 2015 extraction S1).
   double noise_amplitude = 0;

@@ -25,6 +25,9 @@ template <int D> Vec<D> initial_velocity(const BodySpec& body, const Vec<D>& x) 
   for (int a = 0; a < D; ++a) phase += body.sine_wave_vector[a] * x[a];
   for (int a = 0; a < D; ++a)
     v[a] = body.velocity[a] + (body.has_sine_velocity ? body.sine_amplitude[a] * std::sin(phase) : 0.0);
+  if (body.has_velocity_gradient)
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) v[a] += body.velocity_gradient[a][b] * x[b];
   return v;
 }
 
