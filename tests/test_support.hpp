@@ -22,6 +22,7 @@ inline RunResult run_quietly(Spec spec, const std::string& tag) {
   RunOptions options;
   options.out_dir = std::filesystem::temp_directory_path() / ("matpoint_test_" + tag);
   options.progress = false;
+  options.threads = 1;  // ctest runs tests side by side: one thread each avoids oversubscription
   return run_explicit(spec, options);
 }
 
