@@ -25,6 +25,7 @@
 // and no node outside the arrays is touched.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -131,33 +132,36 @@ struct CpdiStencils {
 
   void evaluate(const Grid<D>& grid, const ParticleSet<D>& particles) {
     const auto n = static_cast<std::ptrdiff_t>(particles.size());
-    offset.assign(n + 1, 0);
+    offset.resize(n + 1);
+    offset[0] = 0;
     lowest.resize(n);
     size.resize(n);
+    // Pass 1: each particle's node box, from the extent of its corners (a corner window's lowest
+    // node is monotone in the corner coordinate).
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
     for (std::ptrdiff_t p = 0; p < n; ++p) {
       const Corners X = corners(particles, p);
-      std::array<int, D> lo, hi;
-      lo.fill(std::numeric_limits<int>::max());
-      hi.fill(std::numeric_limits<int>::min());
-      for (int c = 0; c < C; ++c)
-        for (int a = 0; a < D; ++a) {
-          double w[W], dw[W];
-          const int i0 = point_on_grid<Kernel>((X[c][a] - grid.origin[a]) / grid.h[a], grid.cells[a], w, dw);
-          lo[a] = std::min(lo[a], i0);
-          hi[a] = std::max(hi[a], i0 + W - 1);
-        }
+      std::array<int, D> lo;
       Index count = 1;
       for (int a = 0; a < D; ++a) {
-        size[p][a] = hi[a] - lo[a] + 1;
+        double lo_x = X[0][a], hi_x = X[0][a];
+        for (int c = 1; c < C; ++c) {
+          lo_x = std::min(lo_x, X[c][a]);
+          hi_x = std::max(hi_x, X[c][a]);
+        }
+        // The same arithmetic as fill() so that both passes find the same windows.
+        lo[a] = point_window_start<Kernel>((lo_x - grid.origin[a]) / grid.h[a], grid.cells[a]);
+        size[p][a] =
+            point_window_start<Kernel>((hi_x - grid.origin[a]) / grid.h[a], grid.cells[a]) + W - lo[a];
         count *= size[p][a];
       }
       lowest[p] = grid.node_index(lo);
       offset[p + 1] = count;
     }
     for (std::ptrdiff_t p = 0; p < n; ++p) offset[p + 1] += offset[p];
-    weight.assign(offset[n], 0.0);
-    gradient.assign(offset[n], Vec<D>::Zero());
+    weight.resize(offset[n]);  // fill() writes every entry of its particle
+    gradient.resize(offset[n]);
+    // Pass 2: corner coefficients and the corners' grid weights, summed into the box.
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
     for (std::ptrdiff_t p = 0; p < n; ++p) fill(grid, particles, p);
   }
@@ -230,38 +234,65 @@ struct CpdiStencils {
     }
   }
 
+  /// w_c, g_c of particle p. A parallelogram / parallelepiped x_p + J xi with constant
+  /// J = F diag(size0 / 2) has w_c = 1 / 2^D and g_c = J^{-T} s_c / 2^D (s_c the corner's signs;
+  /// Gong eqs. (6.26)-(6.27)); a tracked domain is integrated by cpdi_coefficients.
+  static void coefficients(const ParticleSet<D>& ps, std::size_t p, const Corners& X,
+                           std::array<double, C>& w, std::array<Vec<D>, C>& g) {
+    if constexpr (Domain == CpdiDomain::Tracked) {
+      cpdi_coefficients<D>(X, w, g);
+    } else {
+      const Mat<D> J = ps.F[p] * (0.5 * ps.size0[p]).asDiagonal();
+      const double det = J.determinant();
+      const Mat<D> inv_t = det > 0.0 ? Mat<D>(J.inverse().transpose())
+                                     : Mat<D>::Constant(std::numeric_limits<double>::quiet_NaN());
+      for (int c = 0; c < C; ++c) {
+        Vec<D> s;
+        for (int a = 0; a < D; ++a) s[a] = (c >> a & 1) != 0 ? 1.0 : -1.0;
+        w[c] = 1.0 / C;
+        g[c] = inv_t * s / C;
+      }
+    }
+  }
+
   void fill(const Grid<D>& grid, const ParticleSet<D>& particles, std::size_t p) {
     const Corners X = corners(particles, p);
     std::array<double, C> wc;
     std::array<Vec<D>, C> gc;
-    cpdi_coefficients<D>(X, wc, gc);
-    const auto lo = grid.node_coords(lowest[p]);
+    coefficients(particles, p, X, wc, gc);
+    int i0[C][D];
+    double w[C][D][W], dw[W];
+    std::array<int, D> lo;
+    lo.fill(std::numeric_limits<int>::max());
+    for (int c = 0; c < C; ++c)
+      for (int a = 0; a < D; ++a) {
+        i0[c][a] = point_on_grid<Kernel>((X[c][a] - grid.origin[a]) / grid.h[a], grid.cells[a], w[c][a], dw);
+        lo[a] = std::min(lo[a], i0[c][a]);
+      }
     const auto& n = size[p];
-    const Index e0 = offset[p];
+    const Index e0 = offset[p], e1 = offset[p + 1];
+    std::fill(weight.begin() + e0, weight.begin() + e1, 0.0);
+    std::fill(gradient.begin() + e0, gradient.begin() + e1, Vec<D>::Zero());
+    const Index sy = D >= 2 ? n[0] : 0, sz = D == 3 ? static_cast<Index>(n[0]) * n[1] : 0;
     for (int c = 0; c < C; ++c) {
-      int i0[D];
-      double w[D][W], dw[W];
-      for (int a = 0; a < D; ++a)
-        i0[a] =
-            point_on_grid<Kernel>((X[c][a] - grid.origin[a]) / grid.h[a], grid.cells[a], w[a], dw) - lo[a];
       // Local box index of the corner stencil's first node, then its W^D nodes.
-      Index first = i0[0];
-      if constexpr (D >= 2) first += static_cast<Index>(i0[1]) * n[0];
-      if constexpr (D == 3) first += static_cast<Index>(i0[2]) * n[0] * n[1];
-      const Index sy = D >= 2 ? n[0] : 0, sz = D == 3 ? static_cast<Index>(n[0]) * n[1] : 0;
+      Index first = i0[c][0] - lo[0];
+      if constexpr (D >= 2) first += (i0[c][1] - lo[1]) * sy;
+      if constexpr (D == 3) first += (i0[c][2] - lo[2]) * sz;
       auto add = [&](Index local, double N) {
         weight[e0 + local] += wc[c] * N;
         gradient[e0 + local] += N * gc[c];
       };
+      const auto& wa = w[c];
       if constexpr (D == 1) {
-        for (int i = 0; i < W; ++i) add(first + i, w[0][i]);
+        for (int i = 0; i < W; ++i) add(first + i, wa[0][i]);
       } else if constexpr (D == 2) {
         for (int j = 0; j < W; ++j)
-          for (int i = 0; i < W; ++i) add(first + i + j * sy, w[0][i] * w[1][j]);
+          for (int i = 0; i < W; ++i) add(first + i + j * sy, wa[0][i] * wa[1][j]);
       } else {
         for (int k = 0; k < W; ++k)
           for (int j = 0; j < W; ++j)
-            for (int i = 0; i < W; ++i) add(first + i + j * sy + k * sz, w[0][i] * w[1][j] * w[2][k]);
+            for (int i = 0; i < W; ++i) add(first + i + j * sy + k * sz, wa[0][i] * wa[1][j] * wa[2][k]);
       }
     }
   }

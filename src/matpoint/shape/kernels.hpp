@@ -38,8 +38,9 @@ struct HatKernel {
     if (r <= 1.0) return 1.0 - 0.5 * (1.0 - r) * (1.0 - r);
     return 1.0;
   }
+  static int first_node(double xi) { return static_cast<int>(std::floor(xi)); }
   static int point(double xi, double* w, double* dw) {
-    const int i0 = static_cast<int>(std::floor(xi));
+    const int i0 = first_node(xi);
     const double r = xi - i0;
     w[0] = 1.0 - r;
     w[1] = r;
@@ -67,9 +68,10 @@ struct QuadraticKernel {
     if (r <= 1.5) return 1.0 - (1.5 - r) * (1.5 - r) * (1.5 - r) / 6.0;
     return 1.0;
   }
+  static int first_node(double xi) { return static_cast<int>(std::floor(xi + 0.5)) - 1; }
   static int point(double xi, double* w, double* dw) {
-    const int i0 = static_cast<int>(std::floor(xi + 0.5)) - 1;  // nodes i0 .. i0 + 2
-    const double r = xi - (i0 + 1);                             // in [-1/2, 1/2)
+    const int i0 = first_node(xi);   // nodes i0 .. i0 + 2
+    const double r = xi - (i0 + 1);  // in [-1/2, 1/2)
     const double a = 0.5 - r, b = 0.5 + r;
     w[0] = 0.5 * a * a;
     w[1] = 0.75 - r * r;
@@ -105,6 +107,7 @@ struct CubicKernel {
     if (r <= 2.0) return 1.0 - std::pow(2.0 - r, 4) / 24.0;
     return 1.0;
   }
+  static int first_node(double xi) { return static_cast<int>(std::floor(xi)) - 1; }
   static int point(double xi, double* w, double* dw) {
     const int cell = static_cast<int>(std::floor(xi));
     const double t = xi - cell, s = 1.0 - t;
@@ -155,6 +158,12 @@ inline int fold_to_grid(int i0, int n, int cells, double* w, double* dw) {
   std::copy_n(nw, n, w);
   std::copy_n(nd, n, dw);
   return s;
+}
+
+/// The lowest node of the folded point window at xi (monotone in xi), without the weights.
+template <class Kernel>
+inline int point_window_start(double xi, int cells) {
+  return std::clamp(Kernel::first_node(xi), 0, cells - Kernel::point_width + 1);
 }
 
 /// A grid function evaluated at a point: the kernel's point window, folded into the grid.
