@@ -54,6 +54,36 @@ typename ParticleSet<D>::Corners parallelogram_corners(const ParticleSet<D>& ps,
   return c;
 }
 
+/// The reference multilinear functions N_c and their gradients d N_c / d xi at the 2^D Gauss
+/// points (±1/sqrt 3)^D of [-1, 1]^D (weights 1), corner c with sign +1 along a where bit a is set.
+template <int D>
+struct CornerGaussTable {
+  static constexpr int C = 1 << D;
+  double N[C][C]{};      // [q][c]
+  double dN[C][C][D]{};  // [q][c][a]
+  constexpr CornerGaussTable() {
+    constexpr double gp = 0.57735026918962576451;
+    for (int q = 0; q < C; ++q)
+      for (int c = 0; c < C; ++c) {
+        double f[D]{};
+        for (int a = 0; a < D; ++a) {
+          const double xi = (q >> a & 1) != 0 ? gp : -gp;
+          f[a] = 0.5 * (1.0 + ((c >> a & 1) != 0 ? xi : -xi));
+        }
+        N[q][c] = 1.0;
+        for (int a = 0; a < D; ++a) N[q][c] *= f[a];
+        for (int a = 0; a < D; ++a) {
+          double d = (c >> a & 1) != 0 ? 0.5 : -0.5;
+          for (int b = 0; b < D; ++b)
+            if (b != a) d *= f[b];
+          dN[q][c][a] = d;
+        }
+      }
+  }
+};
+template <int D>
+inline constexpr CornerGaussTable<D> kCornerGauss{};
+
 /// CPDI corner coefficients w_c, g_c of a domain with corners X (tensor order); returns the
 /// domain volume int det J. A degenerate or inverted domain (volume <= 0) gives NaN coefficients,
 /// which the step reports as a non-finite particle velocity.
@@ -61,28 +91,13 @@ template <int D>
 double cpdi_coefficients(const typename ParticleSet<D>::Corners& X, std::array<double, (1 << D)>& w,
                          std::array<Vec<D>, (1 << D)>& g) {
   constexpr int C = 1 << D;
-  const double gp = 1.0 / std::sqrt(3.0);
+  const auto& table = kCornerGauss<D>;
   double volume = 0.0;
   w.fill(0.0);
   g.fill(Vec<D>::Zero());
-  for (int q = 0; q < C; ++q) {  // Gauss points (±1/sqrt 3)^D, weights 1
-    Vec<D> xi;
-    for (int a = 0; a < D; ++a) xi[a] = (q >> a & 1) != 0 ? gp : -gp;
-    std::array<double, C> N;
-    std::array<Vec<D>, C> dN;  // d N_c / d xi
+  for (int q = 0; q < C; ++q) {
     Mat<D> J = Mat<D>::Zero();
-    for (int c = 0; c < C; ++c) {
-      Vec<D> f;
-      for (int a = 0; a < D; ++a) f[a] = 0.5 * (1.0 + ((c >> a & 1) != 0 ? xi[a] : -xi[a]));
-      N[c] = f.prod();
-      for (int a = 0; a < D; ++a) {
-        double d = (c >> a & 1) != 0 ? 0.5 : -0.5;
-        for (int b = 0; b < D; ++b)
-          if (b != a) d *= f[b];
-        dN[c][a] = d;
-      }
-      J += X[c] * dN[c].transpose();
-    }
+    for (int c = 0; c < C; ++c) J += X[c] * Eigen::Map<const Vec<D>>(table.dN[q][c]).transpose();
     Mat<D> cof;  // det(J) J^{-T}
     if constexpr (D == 1) {
       cof(0, 0) = 1.0;
@@ -96,8 +111,8 @@ double cpdi_coefficients(const typename ParticleSet<D>::Corners& X, std::array<d
     const double det = J.determinant();
     volume += det;
     for (int c = 0; c < C; ++c) {
-      w[c] += N[c] * det;
-      g[c] += cof * dN[c];
+      w[c] += table.N[q][c] * det;
+      g[c] += cof * Eigen::Map<const Vec<D>>(table.dN[q][c]);
     }
   }
   const double inv = volume > 0.0 ? 1.0 / volume : std::numeric_limits<double>::quiet_NaN();
