@@ -4,6 +4,7 @@
 #include "test_support.hpp"
 
 #include "matpoint/explicit/explicit_step.hpp"
+#include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 
@@ -14,8 +15,10 @@ namespace {
 
 using namespace matpoint;
 
-ParticleSet<2> run_two_disks(int threads) {
+template <class Stencils = TensorStencils<2, QuadraticBSplineBasis>>
+ParticleSet<2> run_two_disks(int threads, ShapeKind shape = ShapeKind::BSpline2) {
   Spec spec = test::load_example("two-disks");
+  spec.solver.shape = shape;
   spec.grid.cell_size = {0.01, 0.01, 0};  // ~10 000 particles: above the single-thread threshold
   spec.grid.cells = {100, 100, 0};
   spec.bodies[0].velocity = {0.5, 0.5, 0};  // make them meet within the steps below
@@ -25,17 +28,18 @@ ParticleSet<2> run_two_disks(int threads) {
   const int saved = omp_get_max_threads();
   omp_set_num_threads(threads);
   auto sim = build_simulation<2>(spec);
-  ExplicitStepper<2, TensorStencils<2, QuadraticBSplineBasis>> stepper(sim);
+  ExplicitStepper<2, Stencils> stepper(sim);
   for (int k = 0; k < 60; ++k) stepper.step(1e-3);
   omp_set_num_threads(saved);
   EXPECT_GT(sim.particles.size(), 2u * kParallelMinimum);
   return sim.particles;
 }
 
-TEST(Threads, OneAndTwoThreadsAgreeToRoundOff) {
-  const auto one = run_two_disks(1);
-  const auto two = run_two_disks(2);
-  const auto again = run_two_disks(2);
+template <class Stencils = TensorStencils<2, QuadraticBSplineBasis>>
+void check_threads_agree(ShapeKind shape = ShapeKind::BSpline2) {
+  const auto one = run_two_disks<Stencils>(1, shape);
+  const auto two = run_two_disks<Stencils>(2, shape);
+  const auto again = run_two_disks<Stencils>(2, shape);
   ASSERT_EQ(one.size(), two.size());
   double dx = 0, dv = 0, ds = 0, smax = 0;
   for (std::size_t p = 0; p < one.size(); ++p) {
@@ -51,6 +55,15 @@ TEST(Threads, OneAndTwoThreadsAgreeToRoundOff) {
   EXPECT_LT(dx, 1e-13);
   EXPECT_LT(dv, 1e-12);
   EXPECT_LT(ds, 1e-10 * smax);
+}
+
+TEST(Threads, OneAndTwoThreadsAgreeToRoundOff) { check_threads_agree(); }
+
+/// The domain bases: per-particle half-widths (B2GIMP) and per-particle node boxes with tracked
+/// corners (CPDI2) go through the same banded scatter (Stencils::node_span).
+TEST(Threads, OneAndTwoThreadsAgreeWithDomainBases) {
+  check_threads_agree<TensorStencils<2, B2GimpBasis>>(ShapeKind::B2GIMP);
+  check_threads_agree<CpdiStencils<2, HatKernel, CpdiDomain::Tracked>>(ShapeKind::CPDI2);
 }
 
 }  // namespace

@@ -133,6 +133,8 @@ template <int D, class Stencils> class ExplicitStepper {
     TransferParameters transfer{s_.solver.transfer, s_.solver.position_alpha, s_.solver.flip_fraction};
     if (transfer.kind == VelocityTransfer::FMPM && !fmpm_now_) transfer.kind = VelocityTransfer::FLIP;  // periodic
     const auto result = gather_and_move(s_.grid, stencils_, s_.fields, s_.particles, transfer, dt, with_gradient, s_.gravity);
+    if constexpr (requires { stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt); })
+      stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt);  // CPDI2 corners (Gong 2015 eq. (6.28))
     s_.external_work += result.gravity_work;
     if (result.first_outside >= 0)
       fail(result.first_outside, "left the grid domain or has a non-finite velocity");

@@ -9,6 +9,8 @@
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/io/atomic_file.hpp"
 #include "matpoint/io/vtk_writer.hpp"
+#include "matpoint/shape/cpdi_stencils.hpp"
+#include "matpoint/shape/domains.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 
@@ -65,9 +67,9 @@ nlohmann::json energies_json(const HistorySample& s, int dim) {
           {"momentum", std::vector<double>(s.momentum.begin(), s.momentum.begin() + dim)}};
 }
 
-std::string output_name(long index) {
+std::string output_name(long index, const char* prefix = "particles_") {
   std::ostringstream name;
-  name << "particles_" << std::setw(6) << std::setfill('0') << index << ".vtu";
+  name << prefix << std::setw(6) << std::setfill('0') << index << ".vtu";
   return name.str();
 }
 
@@ -98,6 +100,8 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
 
   History history{D, body_count, {}};
   PvdCollection pvd(out_dir / "results.pvd");
+  PvdCollection domains_pvd(out_dir / "domains.pvd");  // GIMP / CPDI particle domains (docs/output.md)
+  const bool write_domains = spec.output.particles && has_particle_domains(spec.solver.shape);
   long outputs = 0;
   auto record = [&] {
     history.samples.push_back(sample(sim, body_count));
@@ -106,6 +110,12 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
       const std::string name = output_name(outputs);
       write_file_atomically(out_dir / name, particles_vtu(sim.particles, spec.output.fields));
       pvd.add(sim.time, name);
+      if (write_domains) {
+        const std::string domains = output_name(outputs, "domains_");
+        const auto corners = particle_domains<D>(spec.solver.shape, sim.grid, sim.particles);
+        write_file_atomically(out_dir / domains, domains_vtu<D>(corners, sim.particles));
+        domains_pvd.add(sim.time, domains);
+      }
     }
     ++outputs;
   };
@@ -211,6 +221,20 @@ template <int D> RunResult run_dim(const Spec& spec, const RunOptions& options) 
   switch (spec.solver.shape) {
     case ShapeKind::BSpline2:
       return run_with<D, TensorStencils<D, QuadraticBSplineBasis>>(spec, options);
+    case ShapeKind::BSpline3:
+      return run_with<D, TensorStencils<D, CubicBSplineBasis>>(spec, options);
+    case ShapeKind::UGIMP:
+      return run_with<D, TensorStencils<D, UGimpBasis>>(spec, options);
+    case ShapeKind::CpGIMP:
+      return run_with<D, TensorStencils<D, CpGimpBasis>>(spec, options);
+    case ShapeKind::B2GIMP:
+      return run_with<D, TensorStencils<D, B2GimpBasis>>(spec, options);
+    case ShapeKind::CPDI1:
+      return run_with<D, CpdiStencils<D, HatKernel, CpdiDomain::Parallelogram>>(spec, options);
+    case ShapeKind::CPDI2:
+      return run_with<D, CpdiStencils<D, HatKernel, CpdiDomain::Tracked>>(spec, options);
+    case ShapeKind::B2CPDI:
+      return run_with<D, CpdiStencils<D, QuadraticKernel, CpdiDomain::Parallelogram>>(spec, options);
     case ShapeKind::Linear:
       break;
   }

@@ -84,7 +84,6 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
     return;
   }
   ws.bands.resize(threads);
-  const Index reach = stencils.max_node_offset(grid);
 #pragma omp parallel num_threads(threads)
   {
 #ifdef _OPENMP
@@ -97,8 +96,9 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
     band.lo = grid.node_count;
     band.hi = -1;
     for (std::ptrdiff_t p = begin; p < end; ++p) {
-      band.lo = std::min(band.lo, stencils.base[p]);
-      band.hi = std::max(band.hi, stencils.base[p] + reach);
+      const auto [lo, hi] = stencils.node_span(grid, p);  // the nodes particle p touches lie in [lo, hi]
+      band.lo = std::min(band.lo, lo);
+      band.hi = std::max(band.hi, hi);
     }
     const Index width = std::max<Index>(band.hi - band.lo + 1, 0);
     if constexpr ((What & kScatterMass) != 0) band.mass.assign(width, 0.0);

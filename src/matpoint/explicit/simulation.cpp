@@ -13,21 +13,42 @@ int ghost_layers(ShapeKind shape) {
   switch (shape) {
     case ShapeKind::BSpline2:
       return QuadraticBSplineBasis::ghost_layers;
-    case ShapeKind::Linear:
+    default:  // every other basis folds the missing nodes onto the grid edge (shape/kernels.hpp)
       break;
   }
   return LinearBasis::ghost_layers;
 }
 
+namespace {
+
+/// Fewest cells per direction for which a basis's stencils fit on the grid (stencil width - 1).
+int minimum_cells(ShapeKind shape) {
+  switch (shape) {
+    case ShapeKind::BSpline2:
+    case ShapeKind::UGIMP:
+    case ShapeKind::CpGIMP:
+    case ShapeKind::B2CPDI:
+      return 2;
+    case ShapeKind::BSpline3:
+    case ShapeKind::B2GIMP:
+      return 3;
+    default:
+      return 1;
+  }
+}
+
+}  // namespace
+
 template <int D> Simulation<D> build_simulation(const Spec& spec) {
   Simulation<D> sim;
   Vec<D> origin, h;
   std::array<int, D> cells{};
-  if (spec.solver.shape == ShapeKind::BSpline2)
-    for (int a = 0; a < D; ++a)
-      if (spec.grid.cells[a] < 2)
-        throw InputError({{"grid.cell_size", std::to_string(spec.grid.cell_size[a]),
-                           "at least 2 cells per direction for the quadratic B-spline"}});
+  const int fewest = minimum_cells(spec.solver.shape);
+  for (int a = 0; a < D; ++a)
+    if (spec.grid.cells[a] < fewest)
+      throw InputError({{"grid.cell_size", std::to_string(spec.grid.cell_size[a]),
+                         "at least " + std::to_string(fewest) + " cells per direction for solver.shape " +
+                             "(its stencil is " + std::to_string(fewest + 1) + " nodes wide)"}});
   for (int a = 0; a < D; ++a) {
     origin[a] = spec.grid.min[a];
     h[a] = spec.grid.cell_size[a];
@@ -35,6 +56,8 @@ template <int D> Simulation<D> build_simulation(const Spec& spec) {
   }
   sim.grid = Grid<D>(origin, h, cells, ghost_layers(spec.solver.shape));
   sim.fields.resize(sim.grid.node_count);
+  // CPDI2 domains are tracked by their corners, set up by the generators from the particle spacing.
+  sim.particles.track_corners = spec.solver.shape == ShapeKind::CPDI2;
 
   for (const auto& m : spec.materials) sim.materials.push_back(make_material(m));
   std::vector<InputIssue> empty_bodies;

@@ -172,8 +172,15 @@ constexpr std::array<Named<FmpmBoundaryMethod>, 2> kFmpmBoundaryMethods{
 constexpr std::array<Named<FmpmRecursion>, 2> kFmpmRecursions{
     {{"incremental", FmpmRecursion::Incremental}, {"binomial", FmpmRecursion::Binomial}}};
 constexpr int kMaxFmpmOrder = 1000;
-constexpr std::array<Named<ShapeKind>, 2> kShapeKinds{
-    {{"linear", ShapeKind::Linear}, {"bspline2", ShapeKind::BSpline2}}};
+constexpr std::array<Named<ShapeKind>, 9> kShapeKinds{{{"linear", ShapeKind::Linear},
+                                                       {"bspline2", ShapeKind::BSpline2},
+                                                       {"bspline3", ShapeKind::BSpline3},
+                                                       {"ugimp", ShapeKind::UGIMP},
+                                                       {"cpgimp", ShapeKind::CpGIMP},
+                                                       {"cpdi1", ShapeKind::CPDI1},
+                                                       {"cpdi2", ShapeKind::CPDI2},
+                                                       {"b2gimp", ShapeKind::B2GIMP},
+                                                       {"b2cpdi", ShapeKind::B2CPDI}}};
 constexpr std::array<Named<DeformationUpdate>, 2> kDeformationUpdates{
     {{"exponential", DeformationUpdate::Exponential}, {"linear", DeformationUpdate::Linear}}};
 

@@ -15,7 +15,8 @@ using Triple = std::array<double, 3>;  // unused trailing components are zero
 
 enum class UpdateScheme { USL, USF, MUSL, USAVG, USAVGPlus };  // Nairn 2026 §2.1 (MUSL = "USL+")
 enum class VelocityTransfer { FLIP, PIC, Blend, FMPM, XPIC };   // particle velocity update
-enum class ShapeKind { Linear, BSpline2 };                 // grid basis
+// Grid basis (docs/input.md#solver): point bases, GIMP family, CPDI family.
+enum class ShapeKind { Linear, BSpline2, BSpline3, UGIMP, CpGIMP, CPDI1, CPDI2, B2GIMP, B2CPDI };
 enum class DeformationUpdate { Exponential, Linear };      // dF = exp(L dt) or I + L dt
 enum class MaterialModel { LinearElastic, NeoHookean };
 enum class NeoHookeanVolumetric { LogJ, HalfJSquared };    // lambda lnJ/J  or  lambda/2 (J - 1/J)

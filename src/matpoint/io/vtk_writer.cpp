@@ -3,6 +3,7 @@
 #include "matpoint/io/atomic_file.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <iomanip>
@@ -119,6 +120,44 @@ template <int D> std::string particles_vtu(const ParticleSet<D>& ps, const std::
   return out.str();
 }
 
+template <int D>
+std::string domains_vtu(const std::vector<typename ParticleSet<D>::Corners>& domains,
+                        const ParticleSet<D>& ps) {
+  constexpr int C = ParticleSet<D>::kCorners;
+  // Tensor-order corner k -> VTK's counter-clockwise (2-D) / bottom-then-top (3-D) numbering.
+  constexpr std::array<int, 8> vtk_order{0, 1, 3, 2, 4, 5, 7, 6};
+  const std::uint8_t type = D == 1 ? 3 : (D == 2 ? 9 : 12);  // VTK_LINE, VTK_QUAD, VTK_HEXAHEDRON
+  const std::size_t n = domains.size();
+  std::vector<double> points(3 * C * n, 0.0);
+  std::vector<std::int64_t> connectivity(C * n), offsets(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    for (int k = 0; k < C; ++k) {
+      const std::size_t point = C * p + k;
+      for (int a = 0; a < D; ++a) points[3 * point + a] = domains[p][D == 1 ? k : vtk_order[k]][a];
+      connectivity[point] = static_cast<std::int64_t>(point);
+    }
+    offsets[p] = static_cast<std::int64_t>(C * (p + 1));
+  }
+  std::vector<std::uint8_t> types(n, type);
+  std::vector<std::int64_t> ids(ps.id.begin(), ps.id.begin() + static_cast<std::ptrdiff_t>(n));
+  std::vector<int> bodies(ps.body.begin(), ps.body.begin() + static_cast<std::ptrdiff_t>(n));
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt32\">\n"
+      << "  <UnstructuredGrid>\n"
+      << "    <Piece NumberOfPoints=\"" << C * n << "\" NumberOfCells=\"" << n << "\">\n"
+      << "      <CellData>\n"
+      << data_array("id", "Int64", 1, ids) << data_array("body", "Int32", 1, bodies) << "      </CellData>\n"
+      << "      <Points>\n"
+      << data_array("Points", "Float64", 3, points) << "      </Points>\n"
+      << "      <Cells>\n"
+      << data_array("connectivity", "Int64", 1, connectivity) << data_array("offsets", "Int64", 1, offsets)
+      << data_array("types", "UInt8", 1, types) << "      </Cells>\n"
+      << "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  return out.str();
+}
+
 void PvdCollection::add(double time, const std::string& dataset_file) {
   entries_.emplace_back(time, dataset_file);
   std::ostringstream out;
@@ -133,5 +172,8 @@ void PvdCollection::add(double time, const std::string& dataset_file) {
 template std::string particles_vtu<1>(const ParticleSet<1>&, const std::vector<std::string>&);
 template std::string particles_vtu<2>(const ParticleSet<2>&, const std::vector<std::string>&);
 template std::string particles_vtu<3>(const ParticleSet<3>&, const std::vector<std::string>&);
+template std::string domains_vtu<1>(const std::vector<ParticleSet<1>::Corners>&, const ParticleSet<1>&);
+template std::string domains_vtu<2>(const std::vector<ParticleSet<2>::Corners>&, const ParticleSet<2>&);
+template std::string domains_vtu<3>(const std::vector<ParticleSet<3>::Corners>&, const ParticleSet<3>&);
 
 }  // namespace matpoint

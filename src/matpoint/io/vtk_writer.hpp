@@ -14,6 +14,12 @@ namespace matpoint {
 /// io/particle_fields.hpp); empty means all.
 template <int D> std::string particles_vtu(const ParticleSet<D>& particles, const std::vector<std::string>& fields);
 
+/// The .vtu text of the particle domains: one cell per particle (VTK_LINE in 1-D, VTK_QUAD in
+/// 2-D, VTK_HEXAHEDRON in 3-D) from corners in tensor order, with the cell data `id` and `body`.
+template <int D>
+std::string domains_vtu(const std::vector<typename ParticleSet<D>::Corners>& domains,
+                        const ParticleSet<D>& particles);
+
 /// A growing ParaView collection, rewritten atomically after each added file.
 class PvdCollection {
  public:

@@ -148,6 +148,7 @@ template <int D> void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particle
   permute<D>(order, particles.material);
   permute<D>(order, particles.body);
   permute<D>(order, particles.id);
+  if (!particles.corners.empty()) permute<D>(order, particles.corners);
   if (particles.state_stride > 0) {
     const auto copy = particles.state;
     const int s = particles.state_stride;

@@ -3,11 +3,14 @@
 
 #include "matpoint/core/types.hpp"
 
+#include <array>
 #include <vector>
 
 namespace matpoint {
 
 template <int D> struct ParticleSet {
+  static constexpr int kCorners = 1 << D;  // corners of a particle domain (segment, quad, hexahedron)
+  using Corners = std::array<Vec<D>, kCorners>;
   std::vector<Vec<D>> x;        // position
   std::vector<Vec<D>> v;        // velocity
   std::vector<double> mass;
@@ -22,6 +25,11 @@ template <int D> struct ParticleSet {
   // Per-material history: state_stride values per particle (0 for the elastic materials).
   int state_stride = 0;
   std::vector<double> state;
+  // CPDI2 particle domains: corner positions, moved with the grid velocity (Gong 2015 eq. (6.28)).
+  // Filled only when track_corners is set before the particles are added; corner c has the sign
+  // +1 along axis a where bit a of c is set (tensor order: (-,-), (+,-), (-,+), (+,+) in 2-D).
+  bool track_corners = false;
+  std::vector<Corners> corners;
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
   [[nodiscard]] double volume(std::size_t p) const { return volume0[p] * F[p].determinant(); }
@@ -40,6 +48,12 @@ template <int D> struct ParticleSet {
     material.push_back(material_id);
     body.push_back(body_id);
     state.resize(state.size() + state_stride, 0.0);
+    if (track_corners) {
+      Corners c;
+      for (int k = 0; k < kCorners; ++k)
+        for (int a = 0; a < D; ++a) c[k][a] = position[a] + ((k >> a & 1) != 0 ? 0.5 : -0.5) * size[a];
+      corners.push_back(c);
+    }
   }
 };
 

@@ -4,15 +4,25 @@
 // coordinate of its lowest node and the `width` weights and derivatives (per unit xi).
 #pragma once
 
+#include "matpoint/shape/kernels.hpp"
+
 #include <cmath>
 
 namespace matpoint {
+
+/// How a tensor basis sizes the particle domain it averages over (GIMP family).
+enum class DomainWidth {
+  None,      // point basis: weights at the particle position
+  Initial,   // uGIMP: half-width l = l0 = size0 / 2, fixed
+  Stretched  // cpGIMP: half-width l = |F_aa| l0 per axis (Gong 2015 §6.3, extraction A20)
+};
 
 /// Classic MPM: piecewise-linear hat functions on the cell that contains the particle.
 struct LinearBasis {
   static constexpr int width = 2;
   static constexpr int ghost_layers = 0;
   static constexpr const char* name = "linear";
+  static constexpr DomainWidth domain = DomainWidth::None;
 
   static int evaluate(double xi, int cells, double* w, double* dw) {
     int i0 = static_cast<int>(std::floor(xi));
@@ -37,6 +47,7 @@ struct QuadraticBSplineBasis {
   static constexpr int width = 3;
   static constexpr int ghost_layers = 0;
   static constexpr const char* name = "bspline2";
+  static constexpr DomainWidth domain = DomainWidth::None;
 
   static int evaluate(double xi, int cells, double* w, double* dw) {
     int i0 = static_cast<int>(std::floor(xi + 0.5)) - 1;  // nodes i0, i0+1, i0+2
@@ -76,5 +87,43 @@ struct QuadraticBSplineBasis {
     }
   }
 };
+
+/// Cubic B-spline (support 2 cells), boundary-modified by the fold of kernels.hpp: next to the
+/// grid edge it is the open (clamped) knot vector basis, with N_0 = 1 on the edge face.
+struct CubicBSplineBasis {
+  static constexpr int width = CubicKernel::point_width;
+  static constexpr int ghost_layers = 0;
+  static constexpr const char* name = "bspline3";
+  static constexpr DomainWidth domain = DomainWidth::None;
+
+  static int evaluate(double xi, int cells, double* w, double* dw) {
+    return point_on_grid<CubicKernel>(xi, cells, w, dw);
+  }
+};
+
+/// GIMP weights (Bardenhagen & Kober 2004; Gong 2015 §6.2-6.3, eqs. (6.4)-(6.5)): the grid
+/// function `Kernel` averaged over the particle's axis-aligned domain [x - l, x + l] per axis.
+///   HatKernel + Initial       uGIMP
+///   HatKernel + Stretched     cpGIMP (l = |F_aa| l0, capped at h/2 as Gong's formula assumes)
+///   QuadraticKernel + Initial B2GIMP (Nairn 2026 §2.1: GIMP with quadratic B-spline grid functions)
+/// The half-width l (in cells) comes from the particle; the part of the domain past the grid edge
+/// is integrated against the linearly extrapolated basis (fold), so partition of unity holds.
+template <class Kernel, DomainWidth Kind>
+struct GimpBasis {
+  static constexpr int width = Kernel::point_width + 1;
+  static constexpr int ghost_layers = 0;
+  static constexpr DomainWidth domain = Kind;
+  /// Smallest half-width in cells: below it the average is computed at this width (the
+  /// difference quotient of the antiderivative would lose digits, error ~ 1e-16 / l).
+  static constexpr double min_half_width = 1e-6;
+
+  static int evaluate(double xi, double l, int cells, double* w, double* dw) {
+    return domain_on_grid<Kernel>(xi, l, cells, w, dw);
+  }
+};
+
+using UGimpBasis = GimpBasis<HatKernel, DomainWidth::Initial>;
+using CpGimpBasis = GimpBasis<HatKernel, DomainWidth::Stretched>;
+using B2GimpBasis = GimpBasis<QuadraticKernel, DomainWidth::Initial>;
 
 }  // namespace matpoint

@@ -7,11 +7,24 @@
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/particles/particle_set.hpp"
+#include "matpoint/shape/tensor_bases.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <utility>
 #include <vector>
 
 namespace matpoint {
+
+/// Half-width, in cells of axis a, of particle p's GIMP domain: l0 = size0 / 2 (uGIMP, B2GIMP) or
+/// |F_aa| l0 (cpGIMP), limited to [min_half_width, 1/2] (the stencil width assumes l <= h/2).
+template <class Basis, int D>
+double gimp_half_width(const Grid<D>& grid, const ParticleSet<D>& particles, std::size_t p, int a) {
+  double l = 0.5 * particles.size0[p][a] / grid.h[a];
+  if constexpr (Basis::domain == DomainWidth::Stretched) l *= std::abs(particles.F[p](a, a));
+  return std::clamp(l, Basis::min_half_width, 0.5);
+}
 
 template <int D, class Basis> struct TensorStencils {
   static constexpr int W = Basis::width;
@@ -28,6 +41,11 @@ template <int D, class Basis> struct TensorStencils {
     Index reach = 0;
     for (int a = 0; a < D; ++a) reach += (W - 1) * grid.stride[a];
     return reach;
+  }
+
+  /// First and last flat node index of particle p's stencil (for the threaded scatter's bands).
+  [[nodiscard]] std::pair<Index, Index> node_span(const Grid<D>& grid, std::size_t p) const {
+    return {base[p], base[p] + max_node_offset(grid)};
   }
 
   /// Calls fn(node, N, gradN) for every node in particle p's support.
@@ -66,7 +84,11 @@ void TensorStencils<D, Basis>::evaluate(const Grid<D>& grid, const ParticleSet<D
     std::array<int, D> lowest{};
     for (int a = 0; a < D; ++a) {
       const double xi = (particles.x[p][a] - grid.origin[a]) / grid.h[a];
-      lowest[a] = Basis::evaluate(xi, grid.cells[a], &weight[p][a * W], &slope[p][a * W]);
+      if constexpr (Basis::domain == DomainWidth::None)
+        lowest[a] = Basis::evaluate(xi, grid.cells[a], &weight[p][a * W], &slope[p][a * W]);
+      else
+        lowest[a] = Basis::evaluate(xi, gimp_half_width<Basis, D>(grid, particles, p, a), grid.cells[a],
+                                    &weight[p][a * W], &slope[p][a * W]);
       const double inv_h = 1.0 / grid.h[a];
       for (int k = 0; k < W; ++k) slope[p][a * W + k] *= inv_h;
     }
