@@ -2,8 +2,10 @@
 // U8; Nairn 2026 §2.1): cubic B-spline, uGIMP, cpGIMP, B2GIMP, CPDI1, CPDI2, B2CPDI in 1-D, 2-D
 // and 3-D. Every check includes particles in the cells next to the grid edge, whose stencils or
 // domains reach past it (folded, shape/kernels.hpp), and one particle exactly on the grid corner.
+#include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/explicit/simulation.hpp"
+#include "matpoint/io/input.hpp"
 #include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/domains.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
@@ -660,6 +662,34 @@ TEST(ShapeFamily, DomainBasesWriteTheirDomainsForParaView) {
         "\" NumberOfCells=\"" + std::to_string(result.summary["particles"].get<long>()) + "\"";
     EXPECT_NE(text.str().find(expected), std::string::npos);
   }
+}
+
+// ---- Input: solver.shape names and the grid size each basis needs.
+
+std::string input_with_shape(const std::string& shape, double cell_size) {
+  return R"({"grid": {"dim": 2, "min": [0, 0], "max": [1, 1], "cell_size": )" + std::to_string(cell_size) +
+         R"(},
+  "materials": [{"name": "m", "model": "linear_elastic", "density": 1000, "E": 1e6, "nu": 0.3}],
+  "bodies": [{"material": "m", "shape": {"type": "box", "min": [0, 0], "max": [0.5, 0.5]}}],
+  "solver": {"shape": ")" +
+         shape + R"(", "end_time": 1}})";
+}
+
+TEST(ShapeFamily, InputAcceptsEveryShapeName) {
+  const std::pair<const char*, ShapeKind> names[] = {
+      {"linear", ShapeKind::Linear}, {"bspline2", ShapeKind::BSpline2}, {"bspline3", ShapeKind::BSpline3},
+      {"ugimp", ShapeKind::UGIMP},   {"cpgimp", ShapeKind::CpGIMP},     {"cpdi1", ShapeKind::CPDI1},
+      {"cpdi2", ShapeKind::CPDI2},   {"b2gimp", ShapeKind::B2GIMP},     {"b2cpdi", ShapeKind::B2CPDI}};
+  for (const auto& [name, kind] : names)
+    EXPECT_EQ(parse_spec(input_with_shape(name, 0.25)).solver.shape, kind);
+  EXPECT_THROW((void)parse_spec(input_with_shape("cpdi3", 0.25)), InputError);
+}
+
+TEST(ShapeFamily, TooFewCellsForTheStencilIsAnInputError) {
+  EXPECT_THROW((void)build_simulation<2>(parse_spec(input_with_shape("bspline3", 0.5))), InputError);
+  EXPECT_THROW((void)build_simulation<2>(parse_spec(input_with_shape("b2gimp", 0.5))), InputError);
+  EXPECT_NO_THROW((void)build_simulation<2>(parse_spec(input_with_shape("ugimp", 0.5))));
+  EXPECT_NO_THROW((void)build_simulation<2>(parse_spec(input_with_shape("cpdi2", 1.0))));
 }
 
 }  // namespace
