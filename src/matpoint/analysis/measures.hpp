@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 12> kMeasures{{
+inline constexpr std::array<MeasureInfo, 13> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |E(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy"},
     {"max_relative_momentum_error",
@@ -22,6 +22,9 @@ inline constexpr std::array<MeasureInfo, 12> kMeasures{{
      "problem whose exact particle velocities stay at their initial values (Nairn 2026 §3.1)"},
     {"final_time", "simulated time reached at the end of the run"},
     {"kinetic_energy_change", "K(end) / K(0) - 1: the signed relative change of kinetic energy over the run"},
+    {"late_kinetic_energy_peak_change",
+     "max K over the outputs in the last tenth of the run / K(0) - 1: for a periodic motion whose kinetic "
+     "energy peaks in that window, the energy lost without the phase error of sampling at one time"},
     {"total_energy_change", "(E(end) - W_ext(end)) / E(0) - 1: the signed relative change of total energy"},
     {"final_com_velocity_x", "x velocity of the centre of mass of all bodies at the last output"},
     {"final_com_velocity_y", "y velocity of the centre of mass of all bodies at the last output"},

@@ -89,6 +89,14 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
     for (const auto& s : history.samples) j = std::min(j, s.min_jacobian);
     return history.samples.empty() ? kNaN : j;
   }
+  if (name == "late_kinetic_energy_peak_change") {
+    if (history.samples.empty()) return kNaN;
+    const double t_end = history.samples.back().time, window = 0.1 * (t_end - history.samples.front().time);
+    double peak = 0.0;
+    for (const auto& s : history.samples)
+      if (s.time >= t_end - window) peak = std::max(peak, s.kinetic_energy);
+    return peak / history.samples.front().kinetic_energy - 1.0;
+  }
   if (name == "kinetic_energy_change" || name == "total_energy_change") {
     if (history.samples.empty()) return kNaN;
     const auto& first = history.samples.front();

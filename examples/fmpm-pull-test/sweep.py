@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""Nairn 2026 §3.1 pull test: time-averaged rms particle velocity error (in % of the end velocity
+10 r) versus the FMPM order k for the new (incremental) and the old (combined) boundary method,
+and FLIP, for one basis and wall depth.
+
+Usage: python3 examples/fmpm-pull-test/sweep.py [MATPOINT] [--shape cpdi1] [--depth 0.25]
+       [--orders 1,2,3,4,6,8,10,12] [--threads 1]
+Prints a Markdown table and, last, the ratio FLIP / FMPM(k) for the largest k.
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+END_VELOCITY = 10 * 0.00866
+
+
+def load_input():
+    text = open(os.path.join(HERE, "input.json")).read()
+    return json.loads(re.sub(r"^\s*//.*$", "", text, flags=re.MULTILINE))
+
+
+def error(matpoint, base, shape, depth, transfer, threads):
+    spec = json.loads(json.dumps(base))
+    spec["solver"].pop("fmpm", None)
+    spec["solver"].update(transfer)
+    spec["solver"]["shape"] = shape
+    for wall in spec["boundary_conditions"]:
+        wall["depth"] = depth
+    spec["output"] = {"every_steps": 1, "particles": False, "plots": False}
+    with tempfile.TemporaryDirectory() as out:
+        path = os.path.join(out, "input.json")
+        json.dump(spec, open(path, "w"))
+        proc = subprocess.run([matpoint, "run", path, "--out", out, "--quiet", "--threads", str(threads)],
+                              capture_output=True, text=True)
+        rows = list(csv.DictReader(open(os.path.join(out, "history.csv"))))
+    if proc.returncode != 0:
+        return float("nan")
+    values = [float(r["rms_velocity_change"]) for r in rows[1:]]
+    return 100.0 * sum(values) / len(values) / END_VELOCITY
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("matpoint", nargs="?", default=os.path.join(HERE, "..", "..", "build", "matpoint"))
+    parser.add_argument("--shape", default="cpdi1")
+    parser.add_argument("--depth", type=float, default=0.25)
+    parser.add_argument("--orders", default="1,2,3,4,6,8,10,12")
+    parser.add_argument("--threads", type=int, default=1)
+    args = parser.parse_args()
+    base = load_input()
+    flip = error(args.matpoint, base, args.shape, args.depth, {"transfer": "flip", "position_alpha": 0.5}, args.threads)
+    print(f"{args.shape}, wall depth {args.depth}: FLIP error {flip:.4g} %\n")
+    print("| k | new (incremental) | old (combined) | FLIP / new |")
+    print("|---|---|---|---|")
+    last = None
+    for k in [int(x) for x in args.orders.split(",")]:
+        new = error(args.matpoint, base, args.shape, args.depth, {"transfer": "fmpm", "fmpm": {"order": k}},
+                    args.threads)
+        old = error(args.matpoint, base, args.shape, args.depth,
+                    {"transfer": "fmpm", "fmpm": {"order": k, "boundary_method": "combined"}}, args.threads)
+        print(f"| {k} | {new:.4g} % | {old:.4g} % | {flip / new:.0f} |", flush=True)
+        last = (k, new)
+    print(f"\nFLIP / FMPM({last[0]}) = {flip / last[1]:.0f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
