@@ -2,6 +2,7 @@
 #include "dispersion_command.hpp"
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/version.hpp"
+#include "matpoint/explicit/courant_limits.hpp"
 #include "matpoint/explicit/runner.hpp"
 #include "matpoint/io/input.hpp"
 #include "stability_scan_command.hpp"
@@ -44,6 +45,8 @@ int command_run(const std::string& input, const RunOptions& options) {
   } catch (const InputError& error) {
     return report_input_error(error);
   }
+  if (const auto warning = courant_warning(spec.solver); !warning.empty())
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
   try {
     const RunResult result = run_explicit(spec, options);
     if (result.exit_code != kExitOk) {

@@ -103,9 +103,17 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
   PvdCollection domains_pvd(out_dir / "domains.pvd");  // GIMP / CPDI particle domains (docs/output.md)
   const bool write_domains = spec.output.particles && has_particle_domains(spec.solver.shape);
   long outputs = 0;
+  // history.csv is rewritten whole (atomically) at most once a second, with every particle
+  // output, and at the end: rewriting it at every one of many frequent outputs would cost O(n^2).
+  auto last_history_write = std::chrono::steady_clock::now() - std::chrono::hours(1);
+  auto write_history = [&] {
+    write_file_atomically(out_dir / "history.csv", history.csv());
+    last_history_write = std::chrono::steady_clock::now();
+  };
   auto record = [&] {
     history.samples.push_back(sample(sim, body_count));
-    write_file_atomically(out_dir / "history.csv", history.csv());
+    if (spec.output.particles || std::chrono::steady_clock::now() - last_history_write > std::chrono::seconds(1))
+      write_history();
     if (spec.output.particles) {
       const std::string name = output_name(outputs);
       write_file_atomically(out_dir / name, particles_vtu(sim.particles, spec.output.fields));
@@ -153,6 +161,7 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
     progress.update(sim.step, sim.time);
   }
   if (result.exit_code == kExitOk && last_recorded_step != sim.step) record();
+  write_history();
   progress.finish(result.exit_code == kExitOk ? "done" : "stopped: numerical failure");
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
