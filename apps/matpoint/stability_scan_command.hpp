@@ -1,12 +1,11 @@
 // `matpoint stability-scan`: the empirical stability limit of an input (analysis/stability_scan.hpp).
 #pragma once
 
-#include "matpoint/analysis/stability_scan.hpp"
-
 #include <CLI/CLI.hpp>
-
 #include <string>
 #include <vector>
+
+#include "matpoint/analysis/stability_scan.hpp"
 
 namespace matpoint {
 

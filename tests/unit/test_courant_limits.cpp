@@ -1,8 +1,8 @@
 // The Courant warning of `matpoint run` (docs/theory/stability.md): limits fall with the FMPM order,
 // and no warning is given where no limit is known.
-#include "matpoint/explicit/courant_limits.hpp"
-
 #include <gtest/gtest.h>
+
+#include "matpoint/explicit/courant_limits.hpp"
 
 namespace {
 

@@ -1,16 +1,16 @@
 // FMPM(k) identities of Nairn 2026 (extraction §2.11, tests T1-T6): every one holds in exact
 // arithmetic, so the bounds are round-off (1e-12 relative to the velocity scale, a little looser
 // where k = 20 passes accumulate rounding).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
 #include "matpoint/explicit/fmpm.hpp"
 #include "matpoint/explicit/grid_update.hpp"
 #include "matpoint/particles/generators.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
-
-#include <Eigen/Dense>
-#include <gtest/gtest.h>
-
-#include <random>
 
 namespace {
 
@@ -18,7 +18,8 @@ using namespace matpoint;
 
 /// Random particles with random velocities in a small grid, their stencils, nodal mass and
 /// v+(1) = p / m (no force: p+ = p).
-template <int D, class Basis> struct Problem {
+template <int D, class Basis>
+struct Problem {
   Grid<D> grid;
   ParticleSet<D> particles;
   TensorStencils<D, Basis> stencils;
@@ -43,12 +44,14 @@ template <int D, class Basis> struct Problem {
     sort_by_cell(grid, particles);
     stencils.evaluate(grid, particles);
     fields.resize(grid.node_count);
-    scatter_to_grid<kScatterMass | kScatterMomentum>(grid, stencils, particles, Vec<D>(Vec<D>::Zero()), fields, ws);
+    scatter_to_grid<kScatterMass | kScatterMomentum>(grid, stencils, particles, Vec<D>(Vec<D>::Zero()),
+                                                     fields, ws);
     v1.resize(grid.node_count);
     lumped_velocity(fields, 0.0, v1);
   }
 
-  std::vector<Vec<D>> fmpm(const FmpmSpec& spec, const VelocityConditions<D>& conditions = {}, int* order = nullptr) {
+  std::vector<Vec<D>> fmpm(const FmpmSpec& spec, const VelocityConditions<D>& conditions = {},
+                           int* order = nullptr) {
     std::vector<Vec<D>> v = v1;
     FmpmLoop<D> loop(spec);
     const int reached = loop.run(grid, stencils, particles, fields.mass, 0.0, conditions, 0.0, v, ws);
@@ -60,7 +63,8 @@ template <int D, class Basis> struct Problem {
   Eigen::MatrixXd dense_s() const {
     Eigen::MatrixXd s = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(particles.size()), grid.node_count);
     for (std::size_t p = 0; p < particles.size(); ++p)
-      stencils.for_each_node(grid, p, [&](Index i, double N, const Vec<D>&) { s(static_cast<Eigen::Index>(p), i) += N; });
+      stencils.for_each_node(
+          grid, p, [&](Index i, double N, const Vec<D>&) { s(static_cast<Eigen::Index>(p), i) += N; });
     return s;
   }
 };
@@ -78,7 +82,8 @@ FmpmSpec order(int k) {
 }
 
 // T1: the incremental recursion (eq. 6) equals the original binomial one (eq. 4), k = 1..20.
-template <int D, class Basis> void expect_eq4_equals_eq6() {
+template <int D, class Basis>
+void expect_eq4_equals_eq6() {
   Problem<D, Basis> problem(5);
   for (int k = 1; k <= 20; ++k) {
     FmpmSpec binomial = order(k);
@@ -100,9 +105,10 @@ TEST(Fmpm, EqualsDenseTruncatedSeriesAndConvergesToFullMassInverse) {
   const Eigen::MatrixXd s = problem.dense_s();
   const Eigen::Index n = s.cols();
   Eigen::VectorXd masses(static_cast<Eigen::Index>(problem.particles.size()));
-  for (std::size_t p = 0; p < problem.particles.size(); ++p) masses(static_cast<Eigen::Index>(p)) = problem.particles.mass[p];
+  for (std::size_t p = 0; p < problem.particles.size(); ++p)
+    masses(static_cast<Eigen::Index>(p)) = problem.particles.mass[p];
   const Eigen::MatrixXd full = s.transpose() * masses.asDiagonal() * s;  // m~ = S^T M S
-  const Eigen::VectorXd lumped = full.rowwise().sum();                    // m = diag(S^T M)
+  const Eigen::VectorXd lumped = full.rowwise().sum();                   // m = diag(S^T M)
   const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n) - lumped.cwiseInverse().asDiagonal() * full;
   for (int c = 0; c < 2; ++c) {
     Eigen::VectorXd v1(n), momentum(n);
@@ -113,7 +119,8 @@ TEST(Fmpm, EqualsDenseTruncatedSeriesAndConvergesToFullMassInverse) {
     const Eigen::VectorXd exact = full.ldlt().solve(momentum);
     // A = I - m^-1/2 (m^-1/2 m~ m^-1/2) m^1/2: its eigenvalues are those of a symmetric matrix.
     const Eigen::VectorXd root = lumped.cwiseSqrt();
-    const Eigen::MatrixXd symmetric = root.cwiseInverse().asDiagonal() * full * root.cwiseInverse().asDiagonal();
+    const Eigen::MatrixXd symmetric =
+        root.cwiseInverse().asDiagonal() * full * root.cwiseInverse().asDiagonal();
     const Eigen::VectorXd eigen = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(symmetric).eigenvalues();
     const double rho = std::max(std::abs(1.0 - eigen.minCoeff()), std::abs(1.0 - eigen.maxCoeff()));
     ASSERT_LT(rho, 1.0) << "nonsingular full mass matrix";
@@ -125,7 +132,8 @@ TEST(Fmpm, EqualsDenseTruncatedSeriesAndConvergesToFullMassInverse) {
       series += term;
       term = a * term;
       const auto v = problem.fmpm(order(k));
-      for (Eigen::Index i = 0; i < n; ++i) EXPECT_NEAR(v[i][c], series(i), 1e-12) << "k = " << k << ", node " << i;
+      for (Eigen::Index i = 0; i < n; ++i)
+        EXPECT_NEAR(v[i][c], series(i), 1e-12) << "k = " << k << ", node " << i;
       const double error = m_norm(series - exact);
       EXPECT_LE(error, previous_error * (1 + 1e-12)) << "the error falls monotonically, k = " << k;
       EXPECT_LE(error, std::pow(rho, k) * error0 * (1 + 1e-9) + 1e-13) << "k = " << k;
@@ -209,7 +217,8 @@ TEST(Fmpm, IncrementalConditionsEqualCombinedUpToOrderTwoOnly) {
   for (int k = 1; k <= 3; ++k) {
     FmpmSpec combined = order(k);
     combined.boundary_method = FmpmBoundaryMethod::Combined;
-    const double difference = max_difference(problem.fmpm(order(k), conditions), problem.fmpm(combined, conditions));
+    const double difference =
+        max_difference(problem.fmpm(order(k), conditions), problem.fmpm(combined, conditions));
     if (k <= 2)
       EXPECT_LT(difference, 1e-14) << "k = " << k;
     else
@@ -228,8 +237,8 @@ TEST(Fmpm, BlendingReproducesItsSeries) {
     for (int j = 1; j < k; ++j) {
       std::vector<Vec<1>> next;
       FmpmLoop<1> loop(order(2));
-      loop.apply_projection(problem.grid, problem.stencils, problem.particles, problem.fields.mass, 0.0, powers.back(),
-                            next, problem.ws);
+      loop.apply_projection(problem.grid, problem.stencils, problem.particles, problem.fields.mass, 0.0,
+                            powers.back(), next, problem.ws);
       for (std::size_t i = 0; i < next.size(); ++i) next[i] = powers.back()[i] - next[i];
       powers.push_back(next);
     }

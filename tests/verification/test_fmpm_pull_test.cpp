@@ -8,9 +8,9 @@
 // Measured here: CPDI 241 x at k = 8 (289 x at 12); B2CPDI 957 x at k = 8 and 1468 x at k = 10 — the
 // k = 8 ratio is 4 % short of the 1000 (README.md of the example discusses it), so the
 // B2CPDI bound is asserted at k = 10.
-#include "test_support.hpp"
-
 #include <gtest/gtest.h>
+
+#include "test_support.hpp"
 
 namespace {
 

@@ -1,9 +1,9 @@
 // FMPM(k) inside every update scheme (Nairn 2026 eq. (3)): the number of loops per step is
 // phi = 1 (USL), 2 (USF, USL+, USAVG), 3 (USAVG+); periodic FMPM runs the loop only in selected
 // steps. XPIC(k) as a transfer: momentum conserved, far less dissipative than PIC.
-#include "test_support.hpp"
-
 #include <gtest/gtest.h>
+
+#include "test_support.hpp"
 
 namespace {
 
@@ -20,15 +20,19 @@ Spec disks(VelocityTransfer transfer, UpdateScheme scheme, double end_time = 0.2
 }
 
 TEST(FmpmSchemes, LoopsPerStepFollowEquation3) {
-  const std::pair<UpdateScheme, long> phi[] = {{UpdateScheme::USL, 1},   {UpdateScheme::USF, 2},
-                                               {UpdateScheme::MUSL, 2},  {UpdateScheme::USAVG, 2},
+  const std::pair<UpdateScheme, long> phi[] = {{UpdateScheme::USL, 1},
+                                               {UpdateScheme::USF, 2},
+                                               {UpdateScheme::MUSL, 2},
+                                               {UpdateScheme::USAVG, 2},
                                                {UpdateScheme::USAVGPlus, 3}};
   for (const auto& [scheme, loops] : phi) {
     const auto result = run_quietly(disks(VelocityTransfer::FMPM, scheme), "fmpm_schemes");
     ASSERT_EQ(result.exit_code, 0) << result.message;
     const long steps = result.summary["steps"].get<long>();
-    EXPECT_EQ(result.summary["fmpm_loops"].get<long>(), loops * steps) << "scheme " << static_cast<int>(scheme);
-    EXPECT_TRUE(result.summary["checks"][1]["pass"].get<bool>()) << "momentum: " << result.summary["checks"][1].dump();
+    EXPECT_EQ(result.summary["fmpm_loops"].get<long>(), loops * steps)
+        << "scheme " << static_cast<int>(scheme);
+    EXPECT_TRUE(result.summary["checks"][1]["pass"].get<bool>())
+        << "momentum: " << result.summary["checks"][1].dump();
   }
 }
 

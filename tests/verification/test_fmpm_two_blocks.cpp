@@ -5,9 +5,9 @@
 //    test, 2.01 over the full example), and needs 0.3 (README.md of the example);
 //  - the average order reached grows as the limit shrinks (Nairn Fig. 14);
 //  - without boundary conditions FMPM conserves linear momentum to round-off.
-#include "test_support.hpp"
-
 #include <gtest/gtest.h>
+
+#include "test_support.hpp"
 
 namespace {
 

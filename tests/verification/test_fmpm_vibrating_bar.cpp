@@ -6,14 +6,13 @@
 //    FMPM(1) at C = 0.84 loses 27.7 +/- 3 % (paper at C = 0.86, above our FMPM(1) limit 0.848);
 //  - Courant limits by bisection to +/-0.005 within 0.03 of the paper's table, and the ordering
 //    FMPM(80) < FMPM(40) < FMPM(4) < FLIP < FMPM(1); periodic FMPM raises the high-k limit.
-#include "test_support.hpp"
-
-#include "matpoint/analysis/stability_scan.hpp"
-
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <sstream>
+
+#include "matpoint/analysis/stability_scan.hpp"
+#include "test_support.hpp"
 
 namespace {
 
@@ -39,7 +38,8 @@ double energy_change(VelocityTransfer transfer, int order, double courant) {
 
 TEST(FmpmVibratingBar, KineticEnergyReturnsAfterFivePeriods) {
   EXPECT_NEAR(energy_change(VelocityTransfer::FLIP, 1, 0.2), 0.0, 5e-4) << "FLIP";
-  for (int k : {4, 8}) EXPECT_NEAR(energy_change(VelocityTransfer::FMPM, k, 0.4), 0.0, 5e-4) << "FMPM(" << k << ")";
+  for (int k : {4, 8})
+    EXPECT_NEAR(energy_change(VelocityTransfer::FMPM, k, 0.4), 0.0, 5e-4) << "FMPM(" << k << ")";
   EXPECT_NEAR(energy_change(VelocityTransfer::FMPM, 2, 0.4), 0.0, 1e-3) << "FMPM(2): 0.07 % measured";
 }
 
@@ -71,8 +71,10 @@ TEST(FmpmVibratingBar, CourantLimitsMatchThePaper) {
   const double k4 = limit({{"solver.fmpm.order", "4"}});
   const double k40 = limit({{"solver.fmpm.order", "40"}});
   const double k80 = limit({{"solver.fmpm.order", "80"}});
-  const double blend1 = limit({{"solver.fmpm.order", "40"}, {"solver.fmpm.blend", R"({"with": 1, "factor": 0.8})"}});
-  const double blend2 = limit({{"solver.fmpm.order", "40"}, {"solver.fmpm.blend", R"({"with": 2, "factor": 0.8})"}});
+  const double blend1 =
+      limit({{"solver.fmpm.order", "40"}, {"solver.fmpm.blend", R"({"with": 1, "factor": 0.8})"}});
+  const double blend2 =
+      limit({{"solver.fmpm.order", "40"}, {"solver.fmpm.blend", R"({"with": 2, "factor": 0.8})"}});
   const double periodic = limit({{"solver.fmpm.order", "40"}, {"solver.fmpm.periodic", R"({"courant": 2})"}});
   // Nairn 2026 §3.3: 0.84, 0.86, 0.539, 0.25, 0.24, 0.51 (blend with FMPM(1), 0.8), 0.40 (FMPM(2), 0.8).
   EXPECT_NEAR(flip, 0.84, 0.03);

@@ -4,13 +4,13 @@
 // reproduction; the bisection brackets the limit to +/-0.0025 and the check allows 0.02 (S1).
 // With one particle per cell the FLIP increment of the 2h (pi) mode vanishes, its stress evolves
 // as sigma <- (1 - 4 CFL^2) sigma, so the loop is unstable above 1/sqrt(2): docs/theory/stability.md.
-#include "matpoint/analysis/stability_scan.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
+
+#include "matpoint/analysis/stability_scan.hpp"
 
 namespace {
 
@@ -43,7 +43,8 @@ TEST(StabilityScan, SetJsonPathReachesArrayElementsAndCreatesObjects) {
 
 TEST(StabilityScan, GongLoopIsStableAtCourant069) {
   const auto input = example_input();
-  for (int ppc : {1, 2, 4}) EXPECT_TRUE(classify_run(input, options_for(ppc), 0.69).stable) << ppc << " per cell";
+  for (int ppc : {1, 2, 4})
+    EXPECT_TRUE(classify_run(input, options_for(ppc), 0.69).stable) << ppc << " per cell";
 }
 
 TEST(StabilityScan, GongLoopLimitsMatchTheIndependentReproduction) {

@@ -1,15 +1,15 @@
 #include "matpoint/analysis/stability_scan.hpp"
 
-#include "matpoint/core/errors.hpp"
-#include "matpoint/explicit/runner.hpp"
-#include "matpoint/io/input.hpp"
+#include <unistd.h>
 
 #include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
 
-#include <unistd.h>
+#include "matpoint/core/errors.hpp"
+#include "matpoint/explicit/runner.hpp"
+#include "matpoint/io/input.hpp"
 
 namespace matpoint {
 

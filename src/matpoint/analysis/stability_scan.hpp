@@ -6,9 +6,8 @@
 // §3.3 (bisection to +/-0.005) and the Gong 2015 extraction's scan S1.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,9 +16,9 @@ namespace matpoint {
 
 struct ScanOptions {
   std::string parameter = "solver.courant";  // dot path of the scanned number
-  double lo = 0.05, hi = 1.5;                 // the bracket; lo must be stable and hi unstable
-  double tolerance = 0.005;                   // stop when hi - lo <= 2 tolerance
-  double growth = 1e6;                        // unstable when max |V| grows beyond this factor (via energy)
+  double lo = 0.05, hi = 1.5;                // the bracket; lo must be stable and hi unstable
+  double tolerance = 0.005;                  // stop when hi - lo <= 2 tolerance
+  double growth = 1e6;                       // unstable when max |V| grows beyond this factor (via energy)
   int threads = 1;
   std::vector<std::pair<std::string, std::string>> overrides;  // (dot path, JSON value) set before the scan
 };

@@ -3,13 +3,13 @@
 // `matpoint run` warns when the input's Courant number exceeds the limit of its transfer.
 #pragma once
 
-#include "matpoint/io/spec.hpp"
-
 #include <array>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
+
+#include "matpoint/io/spec.hpp"
 
 namespace matpoint {
 
@@ -26,14 +26,21 @@ inline std::optional<CourantLimit> known_courant_limit(const SolverSpec& solver)
     case VelocityTransfer::FLIP:
     case VelocityTransfer::PIC:
     case VelocityTransfer::Blend:
-      return CourantLimit{0.709, "the 2h mode of 1-D linear MPM with one particle per cell, 1/sqrt(2) "
-                                 "(Gong 2015 ch. 7; examples/gong-stability-1d)"};
+      return CourantLimit{0.709,
+                          "the 2h mode of 1-D linear MPM with one particle per cell, 1/sqrt(2) "
+                          "(Gong 2015 ch. 7; examples/gong-stability-1d)"};
     case VelocityTransfer::FMPM: {
       const FmpmSpec& f = solver.fmpm;
       if (f.blend_with > 0 || f.period != FmpmPeriod::EveryStep) return std::nullopt;
       // Nairn 2026 §3.3 vibrating bar, 1-D CPDI, measured (examples/fmpm-vibrating-bar/README.md).
-      static constexpr std::array<std::pair<int, double>, 8> kTable{
-          {{1, 0.848}, {2, 0.670}, {3, 0.596}, {4, 0.544}, {8, 0.410}, {16, 0.321}, {40, 0.269}, {80, 0.247}}};
+      static constexpr std::array<std::pair<int, double>, 8> kTable{{{1, 0.848},
+                                                                     {2, 0.670},
+                                                                     {3, 0.596},
+                                                                     {4, 0.544},
+                                                                     {8, 0.410},
+                                                                     {16, 0.321},
+                                                                     {40, 0.269},
+                                                                     {80, 0.247}}};
       double limit = 0.24;  // the plateau for any higher order (Nairn: "C = 0.24 is safe for any k")
       for (const auto& [order, value] : kTable)
         if (order >= f.order) {  // the next tabulated order at or above k: limits fall with k
@@ -55,8 +62,9 @@ inline std::string courant_warning(const SolverSpec& solver) {
   const auto limit = known_courant_limit(solver);
   if (!limit || solver.courant <= limit->value) return {};
   std::ostringstream out;
-  out << "solver.courant = " << solver.courant << " exceeds " << limit->value << ", the stability limit measured for "
-      << limit->source << "; the run may blow up (docs/theory/stability.md)";
+  out << "solver.courant = " << solver.courant << " exceeds " << limit->value
+      << ", the stability limit measured for " << limit->source
+      << "; the run may blow up (docs/theory/stability.md)";
   return out.str();
 }
 

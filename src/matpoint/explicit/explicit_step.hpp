@@ -3,6 +3,9 @@
 // plain arrays, and the stencils are evaluated once per step and reused by every transfer.
 #pragma once
 
+#include <sstream>
+#include <string>
+
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/deformation.hpp"
 #include "matpoint/explicit/fmpm.hpp"
@@ -12,12 +15,10 @@
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/particles/generators.hpp"
 
-#include <sstream>
-#include <string>
-
 namespace matpoint {
 
-template <int D, class Stencils> class ExplicitStepper {
+template <int D, class Stencils>
+class ExplicitStepper {
  public:
   /// Particles are re-sorted by cell every `sort_interval` steps (memory locality only).
   static constexpr long sort_interval = 10;
@@ -26,7 +27,8 @@ template <int D, class Stencils> class ExplicitStepper {
     velocity_.resize(sim.grid.node_count);
     for (double m : sim.particles.mass) total_mass_ += m;
     const FmpmSpec& f = sim.solver.fmpm;
-    if (f.period == FmpmPeriod::Courant) fmpm_period_ = f.period_value * sim.grid.min_cell_size() / max_wave_speed(sim);
+    if (f.period == FmpmPeriod::Courant)
+      fmpm_period_ = f.period_value * sim.grid.min_cell_size() / max_wave_speed(sim);
     if (f.period == FmpmPeriod::Time) fmpm_period_ = f.period_value;
   }
 
@@ -84,7 +86,8 @@ template <int D, class Stencils> class ExplicitStepper {
   [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
 
  private:
-  template <unsigned What> void scatter() {
+  template <unsigned What>
+  void scatter() {
     scatter_to_grid<What>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields, workspace_);
     if constexpr ((What & kScatterMass) != 0)
       if (s_.conditions.has_walls()) s_.conditions.select_wall_nodes(s_.time, s_.fields.mass, s_.mass_floor);
@@ -131,8 +134,10 @@ template <int D, class Stencils> class ExplicitStepper {
 
   void move_particles(double dt, bool with_gradient) {
     TransferParameters transfer{s_.solver.transfer, s_.solver.position_alpha, s_.solver.flip_fraction};
-    if (transfer.kind == VelocityTransfer::FMPM && !fmpm_now_) transfer.kind = VelocityTransfer::FLIP;  // periodic
-    const auto result = gather_and_move(s_.grid, stencils_, s_.fields, s_.particles, transfer, dt, with_gradient, s_.gravity);
+    if (transfer.kind == VelocityTransfer::FMPM && !fmpm_now_)
+      transfer.kind = VelocityTransfer::FLIP;  // periodic
+    const auto result =
+        gather_and_move(s_.grid, stencils_, s_.fields, s_.particles, transfer, dt, with_gradient, s_.gravity);
     if constexpr (requires { stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt); })
       stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt);  // CPDI2 corners (Gong 2015 eq. (6.28))
     s_.external_work += result.gravity_work;
@@ -174,8 +179,8 @@ template <int D, class Stencils> class ExplicitStepper {
   ScatterWorkspace<D> workspace_;
   std::vector<Vec<D>> velocity_;  // scratch node velocities for USF / MUSL
   FmpmLoop<D> fmpm_;
-  bool fmpm_now_ = false;         // this step runs the FMPM loop
-  double fmpm_period_ = 0.0;      // periodic FMPM by time or Courant units
+  bool fmpm_now_ = false;     // this step runs the FMPM loop
+  double fmpm_period_ = 0.0;  // periodic FMPM by time or Courant units
   double next_fmpm_time_ = 0.0;
   double total_mass_ = 0.0;
   double step_dt_ = 0.0;

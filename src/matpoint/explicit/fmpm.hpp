@@ -9,14 +9,14 @@
 // Table 2), contact (line (2), reserved for the contact issue) and the dynamic stop (line (3), §3.4).
 #pragma once
 
-#include "matpoint/explicit/scatter.hpp"
-#include "matpoint/grid/velocity_conditions.hpp"
-#include "matpoint/io/spec.hpp"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
+
+#include "matpoint/explicit/scatter.hpp"
+#include "matpoint/grid/velocity_conditions.hpp"
+#include "matpoint/io/spec.hpp"
 
 namespace matpoint {
 
@@ -30,7 +30,8 @@ struct FmpmStatistics {
   }
 };
 
-template <int D> class FmpmLoop {
+template <int D>
+class FmpmLoop {
  public:
   explicit FmpmLoop(const FmpmSpec& spec = {}) : spec_(spec) {}
 
@@ -39,15 +40,17 @@ template <int D> class FmpmLoop {
   /// Returns the order reached (k, or less when the dynamic measure stops the loop).
   template <class Stencils>
   int run(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
-          const std::vector<double>& mass, double mass_floor, const VelocityConditions<D>& conditions, double t,
-          std::vector<Vec<D>>& v, ScatterWorkspace<D>& ws, Vec<D>* impulse = nullptr, double* work = nullptr) {
+          const std::vector<double>& mass, double mass_floor, const VelocityConditions<D>& conditions,
+          double t, std::vector<Vec<D>>& v, ScatterWorkspace<D>& ws, Vec<D>* impulse = nullptr,
+          double* work = nullptr) {
     const int k = spec_.order;
     statistics_.loops += 1;
     if (k <= 1) return 1;
     const auto start = std::chrono::steady_clock::now();
-    const int order = spec_.recursion == FmpmRecursion::Binomial
-                          ? run_binomial(grid, stencils, particles, mass, mass_floor, v, ws)
-                          : run_incremental(grid, stencils, particles, mass, mass_floor, conditions, v, ws, impulse);
+    const int order =
+        spec_.recursion == FmpmRecursion::Binomial
+            ? run_binomial(grid, stencils, particles, mass, mass_floor, v, ws)
+            : run_incremental(grid, stencils, particles, mass, mass_floor, conditions, v, ws, impulse);
     if (spec_.boundary_method == FmpmBoundaryMethod::Combined || spec_.recursion == FmpmRecursion::Binomial) {
       double ignored_work = 0.0;  // Nairn 2026 §3.1 "combined": overwrite v+(k) on the condition nodes
       conditions.apply(v, t, impulse ? &mass : nullptr, impulse, work ? work : &ignored_work);
@@ -71,7 +74,8 @@ template <int D> class FmpmLoop {
       gathered_[p] = u;
     }
     if (scratch_.momentum.size() != mass.size()) scratch_.momentum.assign(mass.size(), Vec<D>::Zero());
-    scatter_to_grid<kScatterMomentum>(grid, stencils, particles, Vec<D>(Vec<D>::Zero()), scratch_, ws, &gathered_);
+    scatter_to_grid<kScatterMomentum>(grid, stencils, particles, Vec<D>(Vec<D>::Zero()), scratch_, ws,
+                                      &gathered_);
     const auto nodes = static_cast<std::ptrdiff_t>(mass.size());
     next.resize(mass.size());
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
@@ -86,8 +90,9 @@ template <int D> class FmpmLoop {
   /// Table 1 with lines (1) and (3): dv(l) = A dv(l-1), blended, conditions zeroed, summed.
   template <class Stencils>
   int run_incremental(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
-                      const std::vector<double>& mass, double mass_floor, const VelocityConditions<D>& conditions,
-                      std::vector<Vec<D>>& v, ScatterWorkspace<D>& ws, Vec<D>* impulse) {
+                      const std::vector<double>& mass, double mass_floor,
+                      const VelocityConditions<D>& conditions, std::vector<Vec<D>>& v,
+                      ScatterWorkspace<D>& ws, Vec<D>* impulse) {
     prev_ = v;  // dv(1) = v+(1); v holds the running sum v* = v+(l)
     const auto nodes = static_cast<std::ptrdiff_t>(v.size());
     for (int l = 2; l <= spec_.order; ++l) {
@@ -95,8 +100,9 @@ template <int D> class FmpmLoop {
       const double scale = blend_scale(l);
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) prev_[i] = scale * (prev_[i] - next_[i]);  // A dv(l-1)
-      if (spec_.boundary_method == FmpmBoundaryMethod::Incremental) conditions.zero_constrained(prev_, &mass, impulse);  // (1)
-      // (2): contact corrections of each increment plug in here (multimaterial contact issue).
+      if (spec_.boundary_method == FmpmBoundaryMethod::Incremental)
+        conditions.zero_constrained(prev_, &mass, impulse);  // (1)
+        // (2): contact corrections of each increment plug in here (multimaterial contact issue).
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) v[i] += prev_[i];
       if (spec_.measure != FmpmMeasure::None && measure(mass, mass_floor, v) < spec_.limit) return l;  // (3)
@@ -138,7 +144,8 @@ template <int D> class FmpmLoop {
   /// Dynamic FMPM measures of §3.4 over the active nodes, after the corrections:
   ///   Means   = sum |dv_i| / sum |v*_i|
   ///   Changes = mean over nodes of |dv_i| / (|v*_i| + eps), eps = 1 % of max |v*_i|.
-  [[nodiscard]] double measure(const std::vector<double>& mass, double mass_floor, const std::vector<Vec<D>>& v) const {
+  [[nodiscard]] double measure(const std::vector<double>& mass, double mass_floor,
+                               const std::vector<Vec<D>>& v) const {
     double change = 0.0, total = 0.0, largest = 0.0;
     long active = 0;
     for (std::size_t i = 0; i < v.size(); ++i)

@@ -2,13 +2,13 @@
 // of task 5, L_p = sum_i v_i (x) grad S_pi.
 #pragma once
 
+#include <algorithm>
+#include <limits>
+
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/grid_fields.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/particles/particle_set.hpp"
-
-#include <algorithm>
-#include <limits>
 
 namespace matpoint {
 
@@ -28,8 +28,8 @@ namespace detail {
 /// The particle update of one transfer; Xpic selects the XPIC(k) form, else FLIP/PIC/blend.
 template <bool Xpic, int D, class Stencils>
 GatherResult gather_and_move(const Grid<D>& grid, const Stencils& stencils, const GridFields<D>& fields,
-                             ParticleSet<D>& particles, double flip, double alpha, double dt, bool with_gradient,
-                             const Vec<D>& gravity) {
+                             ParticleSet<D>& particles, double flip, double alpha, double dt,
+                             bool with_gradient, const Vec<D>& gravity) {
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
   double work = 0.0;
   long outside = std::numeric_limits<long>::max();
@@ -63,7 +63,8 @@ GatherResult gather_and_move(const Grid<D>& grid, const Stencils& stencils, cons
     particles.x[p] += dx;
     if (with_gradient) particles.L[p] = L;
     work += particles.mass[p] * gravity.dot(dx);
-    if (!grid.contains(particles.x[p]) || !particles.v[p].allFinite()) outside = std::min(outside, static_cast<long>(p));
+    if (!grid.contains(particles.x[p]) || !particles.v[p].allFinite())
+      outside = std::min(outside, static_cast<long>(p));
   }
   return {work, outside == std::numeric_limits<long>::max() ? -1 : outside};
 }
@@ -83,23 +84,25 @@ GatherResult gather_and_move(const Grid<D>& grid, const Stencils& stencils, cons
                              ParticleSet<D>& particles, const TransferParameters& transfer, double dt,
                              bool with_gradient, const Vec<D>& gravity) {
   if (transfer.kind == VelocityTransfer::XPIC)
-    return detail::gather_and_move<true>(grid, stencils, fields, particles, 0.0, 0.5, dt, with_gradient, gravity);
+    return detail::gather_and_move<true>(grid, stencils, fields, particles, 0.0, 0.5, dt, with_gradient,
+                                         gravity);
   const double flip = transfer.kind == VelocityTransfer::FLIP    ? 1.0
                       : transfer.kind == VelocityTransfer::Blend ? transfer.flip_fraction
                                                                  : 0.0;  // PIC, FMPM
-  return detail::gather_and_move<false>(grid, stencils, fields, particles, flip, transfer.alpha, dt, with_gradient,
-                                        gravity);
+  return detail::gather_and_move<false>(grid, stencils, fields, particles, flip, transfer.alpha, dt,
+                                        with_gradient, gravity);
 }
 
 /// L_p = sum_i v_i (x) grad S_pi for a given node velocity field (USF, MUSL).
 template <int D, class Stencils>
-void gather_velocity_gradient(const Grid<D>& grid, const Stencils& stencils, const std::vector<Vec<D>>& velocity,
-                              ParticleSet<D>& particles) {
+void gather_velocity_gradient(const Grid<D>& grid, const Stencils& stencils,
+                              const std::vector<Vec<D>>& velocity, ParticleSet<D>& particles) {
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
   for (std::ptrdiff_t p = 0; p < n; ++p) {
     Mat<D> L = Mat<D>::Zero();
-    stencils.for_each_node(grid, p, [&](Index node, double, const Vec<D>& dN) { L += velocity[node] * dN.transpose(); });
+    stencils.for_each_node(
+        grid, p, [&](Index node, double, const Vec<D>& dN) { L += velocity[node] * dN.transpose(); });
     particles.L[p] = L;
   }
 }
