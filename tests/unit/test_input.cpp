@@ -10,6 +10,7 @@
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/io/input.hpp"
+#include "matpoint/io/memory_estimate.hpp"
 
 namespace matpoint {
 namespace {
@@ -524,6 +525,33 @@ TEST(InputTimeFunction, SingleRowIsConstant) {
   const TimeFunction f{{1}, {4}};
   EXPECT_EQ(f(0.0), 4.0);
   EXPECT_EQ(f(2.0), 4.0);
+}
+
+}  // namespace
+}  // namespace matpoint
+
+// --- memory estimate (issue 8: refuse what would be killed for memory) ------------------------
+
+namespace matpoint {
+namespace {
+
+TEST(InputMemory, RefusesAProblemLargerThanTheAvailableMemoryWithTheEstimate) {
+  const Spec spec = parse_spec(R"({"grid": {"dim": 2, "min": [0, 0], "max": [1, 1], "cell_size": 0.01},
+    "materials": [{"name": "m", "model": "linear_elastic", "density": 1, "E": 1, "nu": 0.3}],
+    "bodies": [{"material": "m", "shape": {"type": "box", "min": [0, 0], "max": [1, 1]}}],
+    "solver": {"end_time": 1}})");
+  const MemoryEstimate e = estimate_memory(spec);
+  EXPECT_GE(e.particles, 4 * 100 * 100) << "an upper estimate: 2 x 2 particles in each of 100 x 100 cells";
+  EXPECT_LE(e.particles, 4 * 102 * 102);
+  EXPECT_NO_THROW(check_memory(spec, 1e12));
+  try {
+    check_memory(spec, 1e6);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& error) {
+    ASSERT_EQ(error.issues().size(), 1u);
+    EXPECT_NE(error.issues()[0].message().find("particles"), std::string::npos) << error.issues()[0].message();
+    EXPECT_NE(error.issues()[0].message().find("GB"), std::string::npos);
+  }
 }
 
 }  // namespace

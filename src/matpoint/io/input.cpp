@@ -24,6 +24,7 @@
 
 #include "matpoint/analysis/measures.hpp"
 #include "matpoint/core/errors.hpp"
+#include "matpoint/io/memory_estimate.hpp"
 #include "matpoint/io/particle_fields.hpp"
 
 namespace matpoint {
@@ -1116,6 +1117,7 @@ Spec parse_spec(const std::string& json_text) {
   if (!root) throw InputError(issues.take());
   Spec spec = SpecReader(issues).read(*root);
   if (!issues.empty()) throw InputError(issues.take());
+  check_memory(spec);  // refuse, with the estimate, what would end in an out-of-memory kill
   spec.echo = std::move(*root);
   return spec;
 }
