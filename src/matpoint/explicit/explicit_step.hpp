@@ -141,8 +141,13 @@ class ExplicitStepper {
     if constexpr (requires { stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt); })
       stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt);  // CPDI2 corners (Gong 2015 eq. (6.28))
     s_.external_work += result.gravity_work;
-    if (result.first_outside >= 0)
-      fail(result.first_outside, "left the grid domain or has a non-finite velocity");
+    if (result.first_outside >= 0) fail(result.first_outside, "left the grid domain or has a non-finite velocity");
+    if (result.first_too_fast >= 0) {
+      std::ostringstream what;
+      what << "moved more than one cell in one step (velocity (" << s_.particles.v[result.first_too_fast].transpose()
+           << "), dt = " << dt << "): the particle Courant number exceeds 1; reduce solver.courant or solver.dt";
+      fail(result.first_too_fast, what.str());
+    }
   }
 
   /// L from the lumped velocities p/m with the conditions at time t (USF task 1.b-1.d, MUSL 4.a-4.c),

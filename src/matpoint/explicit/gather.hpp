@@ -21,6 +21,7 @@ struct TransferParameters {
 struct GatherResult {
   double gravity_work = 0.0;  // sum_p M_p b . (X^{n+1} - X^n)
   long first_outside = -1;    // smallest index of a particle that left the domain, or -1
+  long first_too_fast = -1;   // smallest index of a particle that moved more than a cell, or -1
 };
 
 namespace detail {
@@ -32,8 +33,11 @@ GatherResult gather_and_move(const Grid<D>& grid, const Stencils& stencils, cons
                              bool with_gradient, const Vec<D>& gravity) {
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
   double work = 0.0;
-  long outside = std::numeric_limits<long>::max();
-#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(+ : work) reduction(min : outside)
+  long outside = std::numeric_limits<long>::max(), too_fast = outside;
+  Vec<D> inv_h;
+  for (int a = 0; a < D; ++a) inv_h[a] = 1.0 / grid.h[a];
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(+ : work) \
+    reduction(min : outside, too_fast)
   for (std::ptrdiff_t p = 0; p < n; ++p) {
     Vec<D> v_new = Vec<D>::Zero(), a = Vec<D>::Zero();
     Mat<D> L = Mat<D>::Zero();
@@ -65,8 +69,12 @@ GatherResult gather_and_move(const Grid<D>& grid, const Stencils& stencils, cons
     work += particles.mass[p] * gravity.dot(dx);
     if (!grid.contains(particles.x[p]) || !particles.v[p].allFinite())
       outside = std::min(outside, static_cast<long>(p));
+    // A particle that crosses more than a cell in one step has outrun its stencil: the particle
+    // Courant number |dx| / h exceeds 1 and the step is no longer consistent.
+    if ((dx.cwiseAbs().cwiseProduct(inv_h)).maxCoeff() > 1.0) too_fast = std::min(too_fast, static_cast<long>(p));
   }
-  return {work, outside == std::numeric_limits<long>::max() ? -1 : outside};
+  constexpr long none = std::numeric_limits<long>::max();
+  return {work, outside == none ? -1 : outside, too_fast == none ? -1 : too_fast};
 }
 
 }  // namespace detail
