@@ -24,6 +24,16 @@ TEST(Failures, ParticleLeavingTheGridStopsTheRunWithExitCode3) {
   ASSERT_FALSE(result.history.samples.empty());
 }
 
+TEST(Failures, ParticleOutrunningItsStencilStopsTheRun) {
+  Spec spec = test::load_example("two-disks");  // cell 0.05, dt 1e-3: 60 per unit time crosses 1.2 cells a step
+  spec.bodies[0].velocity = {60.0, 0, 0};
+  spec.checks.clear();
+  const auto result = test::run_quietly(spec, "too_fast");
+  EXPECT_EQ(result.exit_code, 3);
+  EXPECT_NE(result.message.find("more than one cell"), std::string::npos) << result.message;
+  EXPECT_NE(result.message.find("step 1,"), std::string::npos) << "caught in the first step: " << result.message;
+}
+
 TEST(Failures, BodyWithoutParticlesIsAnInputError) {
   Spec spec = test::load_example("two-disks");
   spec.bodies[0].radius = 0.001;  // smaller than the sub-cell spacing: holds no particle centre
