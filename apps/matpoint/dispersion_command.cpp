@@ -87,7 +87,7 @@ void print_text(const DispersionOptions& o, const std::vector<BoundRow>& bounds)
   for (const int n : o.particles_per_cell) {
     std::printf("\nN_p^e = %d\n  theta/pi         |M|  max|lambda|    c_num/c  growth/step\n", n);
     for (const auto& p : dispersion_curve(o.courant, n, o.relation, o.rows))
-      std::printf("  %8.4f  %10.6f  %11.6f  %9.6f  %11.6f\n", p.theta / std::numbers::pi, std::abs(p.m),
+      std::printf("  %8.4f  %10.6f  %11.6f  %9.6f  %11.6f\n", p.theta / std::numbers::pi, std::fabs(p.m),
                   p.spectral_radius, p.phase_speed_ratio, p.growth_per_step);
   }
   std::printf(

@@ -21,7 +21,7 @@ std::string describe_failure(long step, double time, const std::string& entity, 
 InputError::InputError(std::vector<InputIssue> issues)
     : std::runtime_error(join_issues(issues)), issues_(std::move(issues)) {}
 
-NumericalFailure::NumericalFailure(long step, double time, std::string entity, std::string what)
+NumericalFailure::NumericalFailure(long step, double time, std::string entity, const std::string& what)
     : std::runtime_error(describe_failure(step, time, entity, what)),
       step_(step),
       time_(time),

@@ -30,7 +30,7 @@ class InputError : public std::runtime_error {
 /// A run that became numerically invalid: names the step, time and entity (particle or node).
 class NumericalFailure : public std::runtime_error {
  public:
-  NumericalFailure(long step, double time, std::string entity, std::string what);
+  NumericalFailure(long step, double time, std::string entity, const std::string& what);
   [[nodiscard]] long step() const { return step_; }
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] const std::string& entity() const { return entity_; }

@@ -21,8 +21,8 @@ template <int D> bool node_selected(const VelocityConditionSpec& c, const Grid<D
 }  // namespace
 
 template <int D>
-VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpec>& specs, const Grid<D>& grid) {
-  grid_ = grid;
+VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpec>& specs, const Grid<D>& grid)
+    : grid_(grid) {
   for (const auto& c : specs) {
     std::vector<std::pair<int, int>> axis_function;  // (axis, function)
     switch (c.kind) {

@@ -76,7 +76,7 @@ std::string format_number(double x) {
 
 std::string dump_value(const json& j) {
   std::string text = j.dump();
-  if (text.size() > kMaxValueChars) text = text.substr(0, kMaxValueChars) + "...";
+  if (text.size() > kMaxValueChars) text.replace(kMaxValueChars, std::string::npos, "...");
   return text;
 }
 

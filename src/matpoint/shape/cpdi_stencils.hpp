@@ -292,7 +292,9 @@ struct CpdiStencils {
     for (int c = 0; c < C; ++c) {
       // Local box index of the corner stencil's first node, then its W^D nodes.
       Index first = i0[c][0] - lo[0];
+      // cppcheck-suppress containerOutOfBounds ; if constexpr: only compiled for D >= 2
       if constexpr (D >= 2) first += (i0[c][1] - lo[1]) * sy;
+      // cppcheck-suppress containerOutOfBounds ; if constexpr: only compiled for D == 3
       if constexpr (D == 3) first += (i0[c][2] - lo[2]) * sz;
       auto add = [&](Index local, double N) {
         weight[e0 + local] += wc[c] * N;
