@@ -1055,6 +1055,8 @@ class SpecReader {
     }
     set_if(k.boundary_method, f.optional("boundary_method").choice(kFmpmBoundaryMethods));
     set_if(k.recursion, f.optional("recursion").choice(kFmpmRecursions));
+    if (k.recursion == FmpmRecursion::Binomial && (k.blend_with > 0 || k.measure != FmpmMeasure::None))
+      f.optional("recursion").fail("\"incremental\" with blend or dynamic (eq. 4 has no per-increment step)");
   }
 
   void read_output(const Object& o) {
