@@ -156,6 +156,7 @@ Spec mms_spec(const MmsOptions& o, int cells) {
   spec.solver.position_alpha = 1.0;
   spec.solver.shape = o.shape;
   spec.solver.deformation_update = DeformationUpdate::Linear;
+  spec.solver.constrain_old_velocity = o.constrain_old_velocity;
   spec.solver.end_time = o.end_time;
   spec.solver.dt = o.end_time / static_cast<double>(mms_steps(o, cells));
   spec.output.particles = false;

@@ -49,6 +49,9 @@ struct MmsOptions {
   int particles_per_cell = 2;  // per direction, cell-centred (extraction A1, A2)
   double end_time = 0.02;      // T: one period (A9)
   int threads = 1;
+  // Zero the constrained components of the old node velocity too (extraction A24, Gong's loop);
+  // false: matpoint's default (Nairn 2026), where the FLIP increment carries the wall reaction.
+  bool constrain_old_velocity = true;
 };
 
 /// Errors at T by particle quadrature with the current volumes V_p = M_p / rho_p (extraction A8):

@@ -130,7 +130,8 @@ class ExplicitStepper {
   void grid_velocity_update(double dt, double t_new) {
     Vec<D> impulse = Vec<D>::Zero();
     double work = 0.0;
-    update_grid_velocities(s_.fields, dt, s_.mass_floor, s_.conditions, t_new, impulse, work);
+    update_grid_velocities(s_.fields, dt, s_.mass_floor, s_.conditions, t_new, impulse, work,
+                           s_.solver.constrain_old_velocity);
     if (fmpm_now_) {
       fmpm_.run(s_.grid, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new,
                 s_.fields.velocity_new, workspace_, &impulse, &work);
