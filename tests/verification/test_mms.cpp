@@ -100,14 +100,10 @@ TEST(MmsVerification, Linear1DLargeAmplitudeDoesNotConverge) {
 TEST(MmsVerification, Linear1DLargeAmplitudeReportsDivergenceCleanly) {
   MmsOptions o;
   o.amplitude = 0.1;
-  const auto r = run_mms(o, 256);
-  if (r.finished) {
-    EXPECT_TRUE(std::isfinite(r.stress));
-    EXPECT_GT(r.min_jacobian, 0.0);
-  } else {
-    EXPECT_LT(r.steps, 5L * 256);
-    EXPECT_NE(r.message.find("det F"), std::string::npos) << r.message;
-  }
+  const auto r = run_mms(o, 128);
+  EXPECT_FALSE(r.finished);
+  EXPECT_EQ(r.steps, 405);  // the extraction's proto: det F <= 0 at step 405 of 640
+  EXPECT_NE(r.message.find("det F"), std::string::npos) << r.message;
 }
 
 // T12 (Gong Fig. 6.1, CPDI on coarse meshes "appears second order for all the field variables"):
@@ -134,6 +130,40 @@ TEST(MmsVerification, Linear2DSmallAmplitudeConverges) {
 TEST(MmsVerification, Linear2DLargeAmplitudeDoesNotConverge) {
   const auto runs = sweep(2, ShapeKind::Linear, 0.05, {8, 16, 32});
   EXPECT_LT(order(runs, "stress"), 0.5) << table(runs);
+}
+
+// Issue 3 item 4, B-splines at G = 1e-4 (2 ppc): slope >= 1.8 in stress, density, displacement
+// and >= 1.2 in particle velocity (measured 2.01 / 2.01 / 2.01 / 1.61).
+TEST(MmsVerification, QuadraticBSplineSmallAmplitudeConvergesAtSecondOrder) {
+  const auto runs = sweep(1, ShapeKind::BSpline2, 1e-4, {8, 16, 32, 64});
+  EXPECT_GE(order(runs, "displacement"), 1.8) << table(runs);
+  EXPECT_GE(order(runs, "stress"), 1.8) << table(runs);
+  EXPECT_GE(order(runs, "density"), 1.8) << table(runs);
+  EXPECT_GE(order(runs, "velocity"), 1.2) << table(runs);
+}
+
+// Issue 3 item 4, B-splines at G = 0.1: point quadrature stalls (Steffen, Kirby & Berzins 2008),
+// so no slope is asserted: finite results with F > 0 down to h = 1/1024, and the stress error
+// falls at least 3x from h = 1/8 to 1/32 (measured 4.2x).
+TEST(MmsVerification, QuadraticBSplineLargeAmplitudeStaysFiniteAndFirstImproves) {
+  const auto runs = sweep(1, ShapeKind::BSpline2, 0.1, {8, 32, 1024});
+  for (const auto& r : runs) {
+    EXPECT_TRUE(r.finished) << r.message;
+    EXPECT_GT(r.min_jacobian, 0.0);
+    EXPECT_TRUE(std::isfinite(r.stress));
+  }
+  EXPECT_GE(runs[0].stress / runs[1].stress, 3.0) << table(runs);
+}
+
+// Issue 3 item 4: methods that integrate over the particle domain keep slope >= 1.7 at G = 0.1 on
+// h = 1/8 .. 1/64 (measured CPDI2 1.97, B2CPDI 1.96 in stress).
+TEST(MmsVerification, DomainIntegratedBasesLargeAmplitudeConverge) {
+  for (ShapeKind shape : {ShapeKind::CPDI2, ShapeKind::B2CPDI}) {
+    const auto runs = sweep(1, shape, 0.1, {8, 16, 32, 64});
+    EXPECT_GE(order(runs, "displacement"), 1.7) << shape_name(shape) << "\n" << table(runs);
+    EXPECT_GE(order(runs, "stress"), 1.7) << shape_name(shape) << "\n" << table(runs);
+    EXPECT_GE(order(runs, "density"), 1.7) << shape_name(shape) << "\n" << table(runs);
+  }
 }
 
 }  // namespace
