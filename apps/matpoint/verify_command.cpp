@@ -128,7 +128,7 @@ int VerifyCommand::run() const {
       std::fflush(stdout);
     });
     if (!json_) {
-      std::printf("  order (least squares, h <= 1/8 .. 1/64):");
+      std::printf("  order (least squares over the finished runs with h = 1/8 .. 1/64):");
       for (std::size_t k = 0; k < kMmsQuantities.size(); ++k)
         std::printf("  %s %.2f", kMmsQuantities[k], outcome.orders[k]);
       std::printf("\n");
@@ -148,7 +148,7 @@ int VerifyCommand::run() const {
                     (ch.name.substr(ch.name.find(':') + 2)).c_str(), ch.measured, ch.relation.c_str(),
                     ch.relation == ">=" ? ch.expected - ch.tolerance : ch.expected, ch.source.c_str());
       if (outcome.checks.empty())
-        std::printf("  (no published threshold for this basis and amplitude: report only)\n");
+        std::printf("  (no threshold applies to this basis, amplitude and mesh range: report only)\n");
     }
     if (plots_ && !write_plot(outcome, out_, scripts_dir_) && !json_)
       std::fprintf(stderr, "warning: could not draw %s/plots/convergence_%s.png (needs python3-matplotlib)\n",

@@ -92,6 +92,7 @@ struct OrderExpectation {
   double threshold = 0;
   double expected = 0;  // the order the source claims (for the report)
   std::string source;
+  int from_cells = 8, to_cells = 64;  // the fit range (cells per direction); skipped if < 2 runs in it
 };
 
 struct VerificationCase {
