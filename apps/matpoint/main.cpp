@@ -6,6 +6,7 @@
 #include "matpoint/explicit/runner.hpp"
 #include "matpoint/io/input.hpp"
 #include "stability_scan_command.hpp"
+#include "verify_command.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -97,6 +98,9 @@ int main(int argc, char** argv) {
   StabilityScanCommand stability_scan;
   stability_scan.add_to(app);
 
+  VerifyCommand verify;
+  verify.add_to(app, options.scripts_dir.string());
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -106,6 +110,7 @@ int main(int argc, char** argv) {
     if (*dispersion.app) return dispersion.run();
     if (*check) return command_check(input);
     if (stability_scan.chosen()) return stability_scan.run();
+    if (verify.chosen()) return verify.run();
     if (*plot) return draw_plots(plot_dir, options.scripts_dir) ? kExitOk : kExitOther;
     options.out_dir = out_dir;
     options.progress = !quiet;

@@ -88,9 +88,22 @@ class ExplicitStepper {
  private:
   template <unsigned What>
   void scatter() {
-    scatter_to_grid<What>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields, workspace_);
+    const std::vector<Vec<D>>* body = nullptr;
+    if constexpr ((What & kScatterForce) != 0)
+      if (s_.body_force) body = &evaluate_body_force();
+    scatter_to_grid<What>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields, workspace_,
+                          static_cast<const std::vector<Vec<D>>*>(nullptr), body);
     if constexpr ((What & kScatterMass) != 0)
       if (s_.conditions.has_walls()) s_.conditions.select_wall_nodes(s_.time, s_.fields.mass, s_.mass_floor);
+  }
+
+  /// B(X_p, t) of every particle at the start of the step (Gong 2015 extraction A7).
+  const std::vector<Vec<D>>& evaluate_body_force() {
+    auto& b = s_.body_force_values;
+    b.resize(s_.particles.size());
+    for (std::size_t p = 0; p < b.size(); ++p)
+      b[p] = s_.body_force(s_.initial_position[s_.particles.id[p]], s_.time);
+    return b;
   }
 
   /// Periodic FMPM (Nairn 2026 §3.3, NairnMPM's rule): a step runs the loop when t + dt reaches
@@ -117,7 +130,8 @@ class ExplicitStepper {
   void grid_velocity_update(double dt, double t_new) {
     Vec<D> impulse = Vec<D>::Zero();
     double work = 0.0;
-    update_grid_velocities(s_.fields, dt, s_.mass_floor, s_.conditions, t_new, impulse, work);
+    update_grid_velocities(s_.fields, dt, s_.mass_floor, s_.conditions, t_new, impulse, work,
+                           s_.solver.constrain_old_velocity);
     if (fmpm_now_) {
       fmpm_.run(s_.grid, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new,
                 s_.fields.velocity_new, workspace_, &impulse, &work);

@@ -21,9 +21,12 @@ template <int D> void lumped_velocity(const GridFields<D>& fields, double mass_f
 
 /// v(1) = p/m, v+(1) = (p + f dt)/m with conditions at t_new, a = (v+ - v)/dt (the acceleration
 /// includes the reaction of the conditions). Adds the conditions' impulse and work.
+/// `constrain_old` also sets the conditions on v(1) before a is formed (Gong 2015 extraction A24:
+/// the constrained components of v^{s-1/2}, a and v^{s+1/2} are all zero for a fixed node, so the
+/// FLIP increment sees no boundary reaction).
 template <int D>
 void update_grid_velocities(GridFields<D>& fields, double dt, double mass_floor, const VelocityConditions<D>& conditions,
-                            double t_new, Vec<D>& impulse, double& work) {
+                            double t_new, Vec<D>& impulse, double& work, bool constrain_old = false) {
   const auto n = static_cast<std::ptrdiff_t>(fields.mass.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
@@ -37,6 +40,7 @@ void update_grid_velocities(GridFields<D>& fields, double dt, double mass_floor,
     }
   }
   conditions.apply(fields.velocity_new, t_new, &fields.mass, &impulse, &work);
+  if (constrain_old) conditions.apply(fields.velocity, t_new);
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
   for (std::ptrdiff_t i = 0; i < n; ++i) fields.acceleration[i] = (fields.velocity_new[i] - fields.velocity[i]) / dt;
 }

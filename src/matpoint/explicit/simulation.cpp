@@ -70,6 +70,7 @@ template <int D> Simulation<D> build_simulation(const Spec& spec) {
   }
   if (!empty_bodies.empty()) throw InputError(std::move(empty_bodies));
   sim.initial_velocity = sim.particles.v;  // generation order = id order
+  sim.initial_position = sim.particles.x;
   sort_by_cell(sim.grid, sim.particles);
   update_stress<D>(sim.materials, sim.particles);
 

@@ -1,6 +1,9 @@
 // Simulation: everything an explicit run evolves, built once from a validated Spec.
 #pragma once
 
+#include <functional>
+#include <vector>
+
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/grid_fields.hpp"
 #include "matpoint/grid/velocity_conditions.hpp"
@@ -8,11 +11,10 @@
 #include "matpoint/material/material.hpp"
 #include "matpoint/particles/particle_set.hpp"
 
-#include <vector>
-
 namespace matpoint {
 
-template <int D> struct Simulation {
+template <int D>
+struct Simulation {
   Grid<D> grid;
   GridFields<D> fields;
   ParticleSet<D> particles;
@@ -23,11 +25,18 @@ template <int D> struct Simulation {
   double mass_floor = 0.0;  // nodes at or below this mass are inactive
 
   std::vector<Vec<D>> initial_velocity;  // V_p(0) by particle id (velocity-change diagnostics)
+  std::vector<Vec<D>> initial_position;  // X_p (Lagrangian position) by particle id
+
+  /// Optional body force per unit mass B(X, t), evaluated at each particle's Lagrangian position
+  /// X_p and the start-of-step time and added to the gravity (Gong 2015 extraction A7: the
+  /// manufactured solutions' eqs. (4.39), (4.46)). Empty (the default): gravity only, no cost.
+  std::function<Vec<D>(const Vec<D>& X, double t)> body_force;
+  std::vector<Vec<D>> body_force_values;  // scratch: B(X_p, t) by storage index, for the scatter
 
   double time = 0.0;
   long step = 0;
-  double external_work = 0.0;                        // gravity + moving walls, accumulated
-  Vec<D> external_impulse = Vec<D>::Zero();          // gravity + grid conditions, accumulated
+  double external_work = 0.0;                // gravity + moving walls, accumulated
+  Vec<D> external_impulse = Vec<D>::Zero();  // gravity + grid conditions, accumulated
 };
 
 /// Grid ghost layers needed by a basis.
@@ -35,12 +44,15 @@ int ghost_layers(ShapeKind shape);
 
 /// Builds grid, particles (cell-sorted, initial stress from F = I), materials and conditions.
 /// Throws InputError for bodies that produce no particle.
-template <int D> Simulation<D> build_simulation(const Spec& spec);
+template <int D>
+Simulation<D> build_simulation(const Spec& spec);
 
 /// The largest material wave speed (the speed of the Courant number).
-template <int D> double max_wave_speed(const Simulation<D>& sim);
+template <int D>
+double max_wave_speed(const Simulation<D>& sim);
 
 /// Time step: the input's dt, or courant * h_min / max(largest wave speed, largest particle speed).
-template <int D> double stable_time_step(const Simulation<D>& sim);
+template <int D>
+double stable_time_step(const Simulation<D>& sim);
 
 }  // namespace matpoint

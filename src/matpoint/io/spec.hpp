@@ -127,6 +127,9 @@ struct SolverSpec {
   double end_time = 0;
   long max_steps = 0;             // 0: no limit
   double mass_tolerance = 1e-12;  // nodes lighter than this fraction of the largest particle mass are inactive
+  // Gong 2015 extraction A24: the velocity conditions also hold on the old node velocities, so the
+  // FLIP increment carries no boundary reaction (built-in verification problems only; not an input key).
+  bool constrain_old_velocity = false;
 };
 
 struct OutputSpec {

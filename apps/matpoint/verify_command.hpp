@@ -1,0 +1,30 @@
+// `matpoint verify`: the built-in verification problems (analysis/verification.hpp) over a list of
+// resolutions, with error norms, observed orders, plots and the checks against the papers.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace matpoint {
+
+class VerifyCommand {
+ public:
+  void add_to(CLI::App& app, std::string scripts_dir);
+  [[nodiscard]] bool chosen() const { return command_ != nullptr && command_->parsed(); }
+  [[nodiscard]] int run() const;
+
+ private:
+  CLI::App* command_ = nullptr;
+  std::string scripts_dir_;
+  std::vector<std::string> names_;
+  std::string shape_;
+  double amplitude_ = 0;
+  std::vector<int> cells_;
+  int particles_per_cell_ = 2;
+  std::string out_ = ".";
+  int threads_ = 1;
+  bool json_ = false, full_ = false, plots_ = true, gong_walls_ = true;
+};
+
+}  // namespace matpoint
