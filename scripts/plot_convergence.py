@@ -34,7 +34,8 @@ def main():
         rows = [r for r in csv.DictReader(f) if r["finished"] == "1"]
     h = [float(r["h"]) for r in rows]
     fig, ax = plt.subplots(figsize=(6, 5))
-    for q, marker in (("stress", "o"), ("density", "s"), ("velocity", "^"), ("displacement", "v")):
+    for q, marker in (("stress", "o"), ("density", "s"), ("velocity", "^"), ("displacement", "v"),
+                      ("grid_velocity", "D")):
         e = [float(r[q]) for r in rows]
         ax.loglog(h, e, marker=marker, label=f"{q} (order {slope(h, e):.2f})")
     if h:

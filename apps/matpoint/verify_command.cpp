@@ -33,10 +33,10 @@ bool write_plot(const VerificationOutcome& o, const std::filesystem::path& out, 
   std::filesystem::create_directories(dir);
   const auto csv = dir / ("convergence_" + slug(o.spec.name) + ".csv");
   std::ofstream f(csv);
-  f << "h,cells,finished,displacement,stress,density,velocity\n";
+  f << "h,cells,finished,displacement,stress,density,velocity,grid_velocity\n";
   for (const auto& r : o.runs)
     f << r.h << ',' << r.cells << ',' << (r.finished ? 1 : 0) << ',' << r.displacement << ',' << r.stress
-      << ',' << r.density << ',' << r.velocity << '\n';
+      << ',' << r.density << ',' << r.velocity << ',' << r.grid_velocity << '\n';
   f.close();
   const auto script = std::filesystem::path(scripts) / "plot_convergence.py";
   if (scripts.empty() || !std::filesystem::exists(script)) return false;
@@ -115,15 +115,15 @@ int VerifyCommand::run() const {
   bool all_pass = true, diverged = false;
   for (const auto& c : cases) {
     if (!json_)
-      std::printf("%s (%d-D, %s, G = %g, %d ppc, T = %g)\n  %-8s %-10s %-12s %-12s %-12s %-12s %s\n",
+      std::printf("%s (%d-D, %s, G = %g, %d ppc, T = %g)\n  %-8s %-10s %-12s %-12s %-12s %-12s %-12s %s\n",
                   c.name.c_str(), c.options.dim, shape_name(c.options.shape), c.options.amplitude,
                   c.options.particles_per_cell, c.options.end_time, "h", "steps", "displacement", "stress",
-                  "density", "velocity", "min J");
+                  "density", "velocity", "grid vel.", "min J");
     std::fflush(stdout);
     auto outcome = run_case(c, [&](const MmsResult& r) {
       if (json_) return;
-      std::printf("  1/%-6d %-10ld %-12.4e %-12.4e %-12.4e %-12.4e %.4f%s%s\n", r.cells, r.steps,
-                  r.displacement, r.stress, r.density, r.velocity, r.min_jacobian,
+      std::printf("  1/%-6d %-10ld %-12.4e %-12.4e %-12.4e %-12.4e %-12.4e %.4f%s%s\n", r.cells, r.steps,
+                  r.displacement, r.stress, r.density, r.velocity, r.grid_velocity, r.min_jacobian,
                   r.finished ? "" : "  DIVERGED: ", r.finished ? "" : r.message.c_str());
       std::fflush(stdout);
     });
