@@ -1,6 +1,7 @@
 // Helpers shared by the tests: load an example's input and run it quietly in a scratch folder.
 #pragma once
 
+#include "matpoint/analysis/verification.hpp"
 #include "matpoint/explicit/runner.hpp"
 #include "matpoint/io/input.hpp"
 
@@ -35,16 +36,7 @@ inline double measured(const RunResult& result, const std::string& measure) {
 
 /// Least-squares slope of log(error) against log(h): the observed order of convergence.
 inline double observed_order(const std::vector<double>& h, const std::vector<double>& error) {
-  const auto n = static_cast<double>(h.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    const double x = std::log(h[i]), y = std::log(error[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  return least_squares_order(h, error);
 }
 
 }  // namespace matpoint::test

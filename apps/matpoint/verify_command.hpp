@@ -22,7 +22,7 @@ class VerifyCommand {
   double amplitude_ = 0;
   std::vector<int> cells_;
   int particles_per_cell_ = 2;
-  std::string out_ = ".";
+  std::string out_ = "out/verify";  // like `run`: results under out/, never loose in the current folder
   int threads_ = 1;
   bool json_ = false, full_ = false, plots_ = true, gong_walls_ = true;
 };
