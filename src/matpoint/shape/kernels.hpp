@@ -39,13 +39,16 @@ struct HatKernel {
     return 1.0;
   }
   static int first_node(double xi) { return static_cast<int>(std::floor(xi)); }
-  static int point(double xi, double* w, double* dw) {
-    const int i0 = first_node(xi);
-    const double r = xi - i0;
+  /// Weights and slopes of the two nodes of a cell at the local coordinate r in [0, 1].
+  static void cell_weights(double r, double* w, double* dw) {
     w[0] = 1.0 - r;
     w[1] = r;
     dw[0] = -1.0;
     dw[1] = 1.0;
+  }
+  static int point(double xi, double* w, double* dw) {
+    const int i0 = first_node(xi);
+    cell_weights(xi - i0, w, dw);
     return i0;
   }
 };

@@ -25,13 +25,9 @@ struct LinearBasis {
   static constexpr DomainWidth domain = DomainWidth::None;
 
   static int evaluate(double xi, int cells, double* w, double* dw) {
-    int i0 = static_cast<int>(std::floor(xi));
+    int i0 = HatKernel::first_node(xi);
     i0 = i0 < 0 ? 0 : (i0 >= cells ? cells - 1 : i0);  // a particle on the max face uses the last cell
-    const double r = xi - i0;
-    w[0] = 1.0 - r;
-    w[1] = r;
-    dw[0] = -1.0;
-    dw[1] = 1.0;
+    HatKernel::cell_weights(xi - i0, w, dw);
     return i0;
   }
 };
