@@ -2,13 +2,8 @@
 # `matpoint dispersion` exits 0, prints the tight Courant bounds of Gong 2015 (7.29) with the square kept
 # (extraction T16: 1.0000, 1.29904, 1.34479, 1.36035 for N_p^e = 1..4, +-1e-4) and the sufficient bound 1
 # of (7.31)-(7.32), writes dispersion.csv and the plots/dispersion_*.png images; a bad option exits 2.
-set -euo pipefail
-matpoint=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
-python=python3
-[[ -x /usr/bin/python3 ]] && python=/usr/bin/python3
+# shellcheck source-path=SCRIPTDIR source=common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/common.bash"
 
 status=0
 "$matpoint" dispersion --out "$tmp/out" >"$tmp/stdout" 2>"$tmp/stderr" || status=$?

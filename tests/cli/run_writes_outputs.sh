@@ -1,13 +1,8 @@
 #!/usr/bin/env bash
 # A small valid 2-D run writes whole, readable outputs: VTU files listed in results.pvd, history.csv
 # with one row per VTU file, summary.json, plots/energy.png, and no leftover *.partial file.
-set -euo pipefail
-matpoint=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
-python=python3
-[[ -x /usr/bin/python3 ]] && python=/usr/bin/python3
+# shellcheck source-path=SCRIPTDIR source=common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/common.bash"
 
 cat >"$tmp/input.json" <<'JSON'
 { "title": "cli output test",

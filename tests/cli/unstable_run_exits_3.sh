@@ -2,13 +2,8 @@
 # A time step 20 times too large makes the run blow up: exit 3, a message naming the step, time and
 # particle, summary.json with status numerical_failure, and the last listed VTU file still whole
 # and finite.
-set -euo pipefail
-matpoint=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
-python=python3
-[[ -x /usr/bin/python3 ]] && python=/usr/bin/python3
+# shellcheck source-path=SCRIPTDIR source=common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/common.bash"
 
 # c = sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))) ~ 37 m/s with E = 1e6, so a 0.05 m cell is crossed
 # in ~ 1.3e-3 s; dt = 0.01 is far beyond the stable step.

@@ -4,13 +4,8 @@
 # a run stopped by a guard (det F <= 0, a particle leaving the grid) where convergence is expected
 # (CPDI at G = 0.35: the exact F itself reaches 1 - 0.35 pi < 0) stops cleanly with exit 3; a bad
 # name exits 2.
-set -euo pipefail
-matpoint=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
-python=python3
-[[ -x /usr/bin/python3 ]] && python=/usr/bin/python3
+# shellcheck source-path=SCRIPTDIR source=common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/common.bash"
 
 status=0
 "$matpoint" verify mms-1d --json --out "$tmp" >"$tmp/json" 2>"$tmp/stderr" || status=$?
