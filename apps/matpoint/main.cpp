@@ -1,6 +1,7 @@
 // The matpoint command line: run, check, plot (DESIGN.md "Interfaces").
 #include "dispersion_command.hpp"
 #include "matpoint/core/errors.hpp"
+#include "matpoint/core/interrupt.hpp"
 #include "matpoint/core/version.hpp"
 #include "matpoint/explicit/courant_limits.hpp"
 #include "matpoint/explicit/runner.hpp"
@@ -49,7 +50,12 @@ int command_run(const std::string& input, const RunOptions& options) {
   if (const auto warning = courant_warning(spec.solver); !warning.empty())
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   try {
+    install_interrupt_handlers();  // SIGINT / SIGTERM: finish the step, checkpoint, exit 128 + signal
     const RunResult result = run_explicit(spec, options);
+    if (result.exit_code > 128) {
+      std::fprintf(stderr, "%s\n", result.message.c_str());
+      return result.exit_code;
+    }
     if (result.exit_code != kExitOk) {
       std::fprintf(stderr, "error: %s\nthe last good output and summary.json are in %s\n", result.message.c_str(),
                    options.out_dir.c_str());
@@ -86,6 +92,8 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "output folder (created if missing)")->capture_default_str();
   run->add_option("--threads", options.threads, "OpenMP threads (0: default)")->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet", quiet, "no progress output");
+  std::string restart;
+  run->add_option("--restart", restart, "continue from a checkpoint (e.g. OUT/checkpoint.h5) of this input");
 
   auto* check = app.add_subcommand("check", "validate an input file; exit 0, or print every problem and exit 2");
   check->add_option("input", input, "input file")->required();
@@ -114,6 +122,7 @@ int main(int argc, char** argv) {
     if (*plot) return draw_plots(plot_dir, options.scripts_dir) ? kExitOk : kExitOther;
     options.out_dir = out_dir;
     options.progress = !quiet;
+    options.restart = restart;
     return command_run(input, options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

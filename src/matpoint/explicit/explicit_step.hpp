@@ -85,6 +85,19 @@ class ExplicitStepper {
   [[nodiscard]] const Stencils& stencils() const { return stencils_; }
   [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
 
+  /// What the stepper carries from step to step besides the Simulation (checkpoints keep it).
+  struct State {
+    double next_fmpm_time = 0.0;  // periodic FMPM
+    double total_mass = 0.0;      // summed in the particle order of the first step
+    FmpmStatistics fmpm;
+  };
+  [[nodiscard]] State state() const { return {next_fmpm_time_, total_mass_, fmpm_.statistics()}; }
+  void restore(const State& state) {
+    next_fmpm_time_ = state.next_fmpm_time;
+    total_mass_ = state.total_mass;
+    fmpm_.restore_statistics(state.fmpm);
+  }
+
  private:
   template <unsigned What>
   void scatter() {
@@ -155,7 +168,7 @@ class ExplicitStepper {
     if constexpr (requires { stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt); })
       stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt);  // CPDI2 corners (Gong 2015 eq. (6.28))
     s_.external_work += result.gravity_work;
-    if (result.first_outside >= 0) fail(result.first_outside, "left the grid domain or has a non-finite velocity");
+    if (result.first_outside >= 0) fail_outside(result.first_outside);
     if (result.first_too_fast >= 0) {
       std::ostringstream what;
       what << "moved more than one cell in one step (velocity (" << s_.particles.v[result.first_too_fast].transpose()
@@ -181,9 +194,26 @@ class ExplicitStepper {
     const long bad = update_stress<D>(s_.materials, s_.particles);
     if (bad >= 0) {
       std::ostringstream what;
-      what << "det F = " << s_.particles.F[bad].determinant() << " (needs > 0) or a non-finite stress";
+      const double J = s_.particles.F[bad].determinant();
+      if (J > 0.0)
+        what << "non-finite stress (det F = " << J << ")";
+      else
+        what << "det F = " << J << " (needs > 0)";
       fail(bad, what.str());
     }
+  }
+
+  /// Names which of the two the gather saw: a non-finite velocity or position, or a particle
+  /// outside the grid (with the grid's extent).
+  [[noreturn]] void fail_outside(long p) const {
+    std::ostringstream what;
+    const auto& v = s_.particles.v[p];
+    if (!v.allFinite() || !s_.particles.x[p].allFinite())
+      what << "has a non-finite velocity (" << v.transpose() << ") or position";
+    else
+      what << "left the grid domain [" << s_.grid.origin.transpose() << "] to [" << s_.grid.domain_max().transpose()
+           << "] (velocity (" << v.transpose() << "))";
+    fail(p, what.str());
   }
 
   [[noreturn]] void fail(long p, const std::string& what) const {

@@ -84,6 +84,7 @@ class FmpmLoop {
   }
 
   [[nodiscard]] const FmpmStatistics& statistics() const { return statistics_; }
+  void restore_statistics(const FmpmStatistics& statistics) { statistics_ = statistics; }
   [[nodiscard]] const FmpmSpec& spec() const { return spec_; }
 
  private:

@@ -4,10 +4,13 @@
 #include "matpoint/analysis/history.hpp"
 #include "matpoint/analysis/measures_eval.hpp"
 #include "matpoint/core/errors.hpp"
+#include "matpoint/core/interrupt.hpp"
 #include "matpoint/core/progress.hpp"
 #include "matpoint/core/version.hpp"
+#include "matpoint/explicit/courant_limits.hpp"
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/io/atomic_file.hpp"
+#include "matpoint/io/checkpoint.hpp"
 #include "matpoint/io/vtk_writer.hpp"
 #include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/domains.hpp"
@@ -16,6 +19,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -76,7 +80,12 @@ std::string output_name(long index, const char* prefix = "particles_") {
 /// Decides which steps write output.
 class OutputSchedule {
  public:
-  explicit OutputSchedule(const OutputSpec& o) : spec_(o), next_time_(o.every_time) {}
+  /// `next_time`: the next output time of an every_time schedule (a restart's, or every_time).
+  OutputSchedule(const OutputSpec& o, double time, double next_time) : spec_(o), next_time_(next_time) {
+    const double every = o.every_time;  // a restart may change every_time: start on its next multiple
+    if (every > 0 && !(next_time_ > time && next_time_ <= time + every * (1 + 1e-9)))
+      next_time_ = (std::floor(time / every) + 1) * every;
+  }
   bool due(long step, double time, double dt) {
     if (spec_.every_steps > 0) return step % spec_.every_steps == 0;
     if (spec_.every_time > 0 && time >= next_time_ - 1e-6 * dt) {
@@ -85,24 +94,69 @@ class OutputSchedule {
     }
     return false;
   }
+  [[nodiscard]] double next_time() const { return next_time_; }
 
  private:
   OutputSpec spec_;
   double next_time_;
 };
 
+int current_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+const char* signal_name(int signal) {
+  switch (signal) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    default:
+      return "a signal";
+  }
+}
+
+/// Starts a run: from the input (dt and the momentum scale from the initial state) or from a
+/// checkpoint (everything as the interrupted run had it). Throws InputError before writing.
+template <int D>
+RunCounters start_state(const Spec& spec, const RunOptions& options, Simulation<D>& sim, History& history) {
+  RunCounters run;
+  if (!options.restart.empty()) {
+    read_checkpoint<D>(options.restart, spec.echo, sim, run, history);
+    if (run.threads != current_threads())
+      std::fprintf(stderr,
+                   "warning: the checkpoint was written by a run with %d thread(s), this one has %d: the results "
+                   "will differ from an uninterrupted run in round-off (same thread count: bit for bit)\n",
+                   run.threads, current_threads());
+    return run;
+  }
+  run.dt = stable_time_step(sim);
+  for (std::size_t p = 0; p < sim.particles.size(); ++p)
+    run.momentum_scale += sim.particles.mass[p] * sim.particles.v[p].norm();
+  run.next_output_time = spec.output.every_time;
+  return run;
+}
+
 template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunOptions& options) {
   Simulation<D> sim = build_simulation<D>(spec);  // may throw InputError: nothing written yet
   const int body_count = static_cast<int>(spec.bodies.size());
-  const double dt = stable_time_step(sim);
+  History history{D, body_count, {}};
+  RunCounters run = start_state<D>(spec, options, sim, history);  // may throw InputError too
+  const bool restarting = !options.restart.empty();
+  const double dt = run.dt;
   const auto& out_dir = options.out_dir;
   std::filesystem::create_directories(out_dir);
 
-  History history{D, body_count, {}};
   PvdCollection pvd(out_dir / "results.pvd");
   PvdCollection domains_pvd(out_dir / "domains.pvd");  // GIMP / CPDI particle domains (docs/output.md)
+  pvd.restore(run.results);  // a restart rewrites them as the checkpoint knew them
+  domains_pvd.restore(run.domains);
   const bool write_domains = spec.output.particles && has_particle_domains(spec.solver.shape);
-  long outputs = 0;
+  long outputs = run.outputs;
   // history.csv is rewritten whole (atomically) at most once a second, with every particle
   // output, and at the end: rewriting it at every one of many frequent outputs would cost O(n^2).
   auto last_history_write = std::chrono::steady_clock::now() - std::chrono::hours(1);
@@ -128,18 +182,54 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
     ++outputs;
   };
 
-  double momentum_scale = 0.0;
-  for (std::size_t p = 0; p < sim.particles.size(); ++p) momentum_scale += sim.particles.mass[p] * sim.particles.v[p].norm();
-
   ExplicitStepper<D, Stencils> stepper(sim);
-  OutputSchedule schedule(spec.output);
+  if (restarting) stepper.restore({run.next_fmpm_time, run.total_mass, {run.fmpm_loops, run.fmpm_passes, run.fmpm_seconds}});
+  OutputSchedule schedule(spec.output, sim.time, run.next_output_time);
   Progress progress(options.progress, spec.solver.end_time);
-  record();
+  long last_recorded_step = run.last_recorded_step;
+  const long restart_step = sim.step;
+  if (restarting)
+    write_history();  // drops any rows a killed run wrote after its checkpoint
+  else
+    record();
 
   RunResult result;
   const auto wall_start = std::chrono::steady_clock::now();
-  double step_wall = 0.0, step_cpu = 0.0;
-  long last_recorded_step = 0;
+  double step_wall = run.step_wall, step_cpu = run.step_cpu;
+  const auto wall_now = [&] { return run.wall + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
+
+  // A checkpoint holds the state after a completed step with the scheduled outputs up to it; it is
+  // taken before the extra output of a run's last step, so a restart repeats the outputs exactly.
+  const CheckpointSpec& every = spec.output.checkpoint;
+  auto last_checkpoint_wall = std::chrono::steady_clock::now();
+  long checkpoint_step = restarting ? sim.step : -1;
+  std::filesystem::path checkpoint_file;
+  auto save_checkpoint = [&] {
+    RunCounters now = run;
+    const auto stepper_state = stepper.state();
+    now.outputs = outputs;
+    now.next_output_time = schedule.next_time();
+    now.last_recorded_step = last_recorded_step;
+    now.next_fmpm_time = stepper_state.next_fmpm_time;
+    now.total_mass = stepper_state.total_mass;
+    now.fmpm_loops = stepper_state.fmpm.loops;
+    now.fmpm_passes = stepper_state.fmpm.passes;
+    now.fmpm_seconds = stepper_state.fmpm.seconds;
+    now.step_wall = step_wall, now.step_cpu = step_cpu, now.wall = wall_now();
+    now.threads = current_threads();
+    now.results = pvd.entries(), now.domains = domains_pvd.entries();
+    checkpoint_file = out_dir / kCheckpointFile;
+    write_checkpoint<D>(checkpoint_file, out_dir / kPreviousCheckpointFile, sim, now, history, spec.echo);
+    last_checkpoint_wall = std::chrono::steady_clock::now();
+    checkpoint_step = sim.step;
+  };
+  auto checkpoint_due = [&] {
+    const auto minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_wall).count() / 60;
+    return (every.every_steps > 0 && sim.step % every.every_steps == 0) ||
+           (every.every_minutes > 0 && minutes >= every.every_minutes);
+  };
+
+  int interrupted = 0;
   const double end_time = spec.solver.end_time;
   while (sim.time < end_time - 1e-9 * dt && (spec.solver.max_steps == 0 || sim.step < spec.solver.max_steps)) {
     const double h = std::min(dt, end_time - sim.time);
@@ -159,19 +249,36 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
       last_recorded_step = sim.step;
     }
     progress.update(sim.step, sim.time);
+    if (checkpoint_due()) save_checkpoint();
+    if ((interrupted = interrupt_signal()) != 0) break;
   }
-  if (result.exit_code == kExitOk && last_recorded_step != sim.step) record();
+  const bool finished = result.exit_code == kExitOk && interrupted == 0;
+  if (checkpoint_step != sim.step && (interrupted != 0 || (finished && every.enabled()))) save_checkpoint();
+  if (interrupted != 0) {
+    result.exit_code = 128 + interrupted;
+    std::ostringstream message;
+    message << "interrupted by " << signal_name(interrupted) << " after step " << sim.step << ", time "
+            << sim.time << "; continue with --restart " << checkpoint_file.string();
+    result.message = message.str();
+  }
+  if (result.exit_code != kExitNumerical && last_recorded_step != sim.step) record();
   write_history();
-  progress.finish(result.exit_code == kExitOk ? "done" : "stopped: numerical failure");
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  progress.finish(finished ? "done" : interrupted != 0 ? "interrupted" : "stopped: numerical failure");
+  const double wall = wall_now();
 
   const double particle_steps = static_cast<double>(sim.particles.size()) * static_cast<double>(sim.step);
   auto& s = result.summary;
   s["matpoint_version"] = kVersion;
   s["title"] = spec.title;
-  s["status"] = result.exit_code == kExitOk ? "ok" : "numerical_failure";
+  s["status"] = finished ? "ok" : interrupted != 0 ? "interrupted" : "numerical_failure";
   s["exit_code"] = result.exit_code;
   s["message"] = result.message;
+  s["restarted_from"] = restarting ? nlohmann::json(options.restart.string()) : nlohmann::json(nullptr);
+  s["restarted_at_step"] = restarting ? nlohmann::json(restart_step) : nlohmann::json(nullptr);
+  s["checkpoint"] = checkpoint_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(checkpoint_file.string());
+  s["checkpoint_step"] = checkpoint_step >= 0 ? nlohmann::json(checkpoint_step) : nlohmann::json(nullptr);
+  s["warnings"] = nlohmann::json::array();  // e.g. a Courant number above the measured stability limit
+  if (const auto warning = courant_warning(spec.solver); !warning.empty()) s["warnings"].push_back(warning);
   s["dimension"] = D;
   s["particles"] = sim.particles.size();
   s["nodes"] = sim.grid.node_count;
@@ -179,11 +286,7 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
   s["steps"] = sim.step;
   s["time_step"] = dt;
   s["time_reached"] = sim.time;
-#ifdef _OPENMP
-  s["threads"] = omp_get_max_threads();
-#else
-  s["threads"] = 1;
-#endif
+  s["threads"] = current_threads();
   s["wall_time_seconds"] = wall;
   s["step_wall_seconds"] = step_wall;
   s["step_cpu_seconds"] = step_cpu;
@@ -206,7 +309,7 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
   s["checks"] = nlohmann::json::array();
   bool all_pass = true;
   for (const auto& c : spec.checks) {
-    const double measured = evaluate_measure(c.measure, spec, history, momentum_scale);
+    const double measured = evaluate_measure(c.measure, spec, history, run.momentum_scale);
     const bool pass = std::isfinite(measured) && std::abs(measured - c.expected) <= c.tolerance;
     all_pass = all_pass && pass;
     s["checks"].push_back({{"name", c.name},

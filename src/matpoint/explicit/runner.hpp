@@ -17,16 +17,18 @@ struct RunOptions {
   int threads = 0;                 // 0: OpenMP default
   bool progress = true;            // progress on stderr (a bar on a terminal, log lines otherwise)
   std::filesystem::path scripts_dir;  // folder of plot_history.py; empty: no plots
+  std::filesystem::path restart;      // a checkpoint to continue from; empty: start at time 0
 };
 
 struct RunResult {
-  int exit_code = 0;  // 0 ok, 3 numerical failure
+  int exit_code = 0;  // 0 ok, 3 numerical failure, 128 + signal number when interrupted
   std::string message;
   nlohmann::json summary;
   History history;  // one sample per output time
 };
 
-/// Throws InputError (before writing anything) when the spec cannot be set up, e.g. an empty body.
+/// Throws InputError (before writing anything) when the spec cannot be set up, e.g. an empty body,
+/// or when options.restart is not a usable checkpoint of this input.
 RunResult run_explicit(const Spec& spec, const RunOptions& options);
 
 /// Draws plots/*.png of an output folder with the project's matplotlib script; false on failure.

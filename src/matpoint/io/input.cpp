@@ -493,7 +493,7 @@ class SpecReader {
                        {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
                         "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance"}));
     read_output(
-        Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields"}));
+        Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields", "checkpoint"}));
     read_checks(top.optional("checks"));
     return std::move(spec_);
   }
@@ -1076,6 +1076,17 @@ class SpecReader {
       else
         item.fail(fields_text);
     }
+    read_checkpoint_keys(Object(o.optional("checkpoint"), {"every_steps", "every_minutes"}));
+  }
+
+  /// output.checkpoint: every N steps and/or every T wall-clock minutes (docs/input.md#output).
+  void read_checkpoint_keys(const Object& c) {
+    if (!c.valid()) return;
+    CheckpointSpec& out = spec_.output.checkpoint;
+    set_if(out.every_steps, c.optional("every_steps").integer(1));
+    set_if(out.every_minutes, c.optional("every_minutes").number(kPositive));
+    if (!c.has("every_steps") && !c.has("every_minutes"))
+      c.value().fail("an object with every_steps (an integer >= 1) and/or every_minutes (a number > 0)");
   }
 
   void read_checks(const Value& list) {

@@ -132,12 +132,20 @@ struct SolverSpec {
   bool constrain_old_velocity = false;
 };
 
+/// output.checkpoint: when a run writes DIR/checkpoint.h5 (docs/output.md "Checkpoints and restart").
+struct CheckpointSpec {
+  long every_steps = 0;      // 0: not by step count
+  double every_minutes = 0;  // 0: not by wall-clock time
+  [[nodiscard]] bool enabled() const { return every_steps > 0 || every_minutes > 0; }
+};
+
 struct OutputSpec {
   long every_steps = 0;     // 0: use every_time
   double every_time = 0;    // 0 and every_steps == 0: first and last state only
   bool particles = true;    // write particles_NNNNNN.vtu + results.pvd
   bool plots = true;        // write plots/*.png at the end (needs python3-matplotlib)
   std::vector<std::string> fields;  // particle fields written to .vtu; empty = all
+  CheckpointSpec checkpoint;
 };
 
 /// A reference value the run compares itself against (summary.json "checks").

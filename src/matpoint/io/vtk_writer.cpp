@@ -160,6 +160,15 @@ std::string domains_vtu(const std::vector<typename ParticleSet<D>::Corners>& dom
 
 void PvdCollection::add(double time, const std::string& dataset_file) {
   entries_.emplace_back(time, dataset_file);
+  write();
+}
+
+void PvdCollection::restore(std::vector<std::pair<double, std::string>> entries) {
+  entries_ = std::move(entries);
+  if (!entries_.empty()) write();
+}
+
+void PvdCollection::write() const {
   std::ostringstream out;
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   out << std::setprecision(17);

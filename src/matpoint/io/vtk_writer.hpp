@@ -25,8 +25,12 @@ class PvdCollection {
  public:
   explicit PvdCollection(std::filesystem::path file) : file_(std::move(file)) {}
   void add(double time, const std::string& dataset_file);
+  /// The (time, file) entries so far; restore() replaces them (a restart) and rewrites the file.
+  [[nodiscard]] const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
+  void restore(std::vector<std::pair<double, std::string>> entries);
 
  private:
+  void write() const;
   std::filesystem::path file_;
   std::vector<std::pair<double, std::string>> entries_;
 };

@@ -1,0 +1,371 @@
+#include "matpoint/io/checkpoint.hpp"
+
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+
+#include "matpoint/core/errors.hpp"
+#include "matpoint/core/version.hpp"
+#include "matpoint/io/atomic_file.hpp"
+#include "matpoint/io/hdf5_file.hpp"
+
+namespace matpoint {
+
+namespace {
+
+using Shape = std::vector<hsize_t>;
+using json = nlohmann::json;
+
+constexpr const char* kFormat = "matpoint checkpoint";
+constexpr std::size_t kSampleColumns = 13;  // time, step, 3 energies, momentum[3], impulse[3], min J, rms dv
+constexpr std::size_t kBodyColumns = 9;     // kinetic, strain, mass, momentum[3], centre-of-mass velocity[3]
+
+hsize_t h(std::size_t n) { return static_cast<hsize_t>(n); }
+
+// --- fixed-size Eigen vectors / matrices <-> flat row-major arrays ---
+
+template <class M> std::vector<double> flat(const std::vector<M>& in) {
+  std::vector<double> out;
+  out.reserve(in.size() * M::SizeAtCompileTime);
+  for (const auto& m : in)
+    for (int i = 0; i < M::RowsAtCompileTime; ++i)
+      for (int j = 0; j < M::ColsAtCompileTime; ++j) out.push_back(m(i, j));
+  return out;
+}
+
+template <class M> void unflat(const std::vector<double>& in, std::vector<M>& out) {
+  out.resize(in.size() / M::SizeAtCompileTime);
+  std::size_t k = 0;
+  for (auto& m : out)
+    for (int i = 0; i < M::RowsAtCompileTime; ++i)
+      for (int j = 0; j < M::ColsAtCompileTime; ++j) m(i, j) = in[k++];
+}
+
+template <class To, class From>
+std::vector<To> convert(const std::vector<From>& in) {
+  return std::vector<To>(in.begin(), in.end());
+}
+
+// --- history rows ---
+
+std::vector<double> history_rows(const History& history) {
+  std::vector<double> out;
+  for (const auto& s : history.samples) {
+    const double row[kSampleColumns] = {s.time,
+                                        static_cast<double>(s.step),
+                                        s.kinetic_energy,
+                                        s.strain_energy,
+                                        s.external_work,
+                                        s.momentum[0],
+                                        s.momentum[1],
+                                        s.momentum[2],
+                                        s.external_impulse[0],
+                                        s.external_impulse[1],
+                                        s.external_impulse[2],
+                                        s.min_jacobian,
+                                        s.rms_velocity_change};
+    out.insert(out.end(), row, row + kSampleColumns);
+    for (int b = 0; b < history.body_count; ++b) {
+      out.insert(out.end(), {s.body_kinetic[b], s.body_strain[b], s.body_mass[b]});
+      out.insert(out.end(), s.body_momentum[b].begin(), s.body_momentum[b].end());
+      out.insert(out.end(), s.body_com_velocity[b].begin(), s.body_com_velocity[b].end());
+    }
+  }
+  return out;
+}
+
+std::vector<HistorySample> history_samples(const std::vector<double>& rows, std::size_t count, int bodies) {
+  std::vector<HistorySample> out(count);
+  const std::size_t width = kSampleColumns + kBodyColumns * static_cast<std::size_t>(bodies);
+  for (std::size_t r = 0; r < count; ++r) {
+    const double* x = rows.data() + r * width;
+    HistorySample& s = out[r];
+    s.time = x[0];
+    s.step = static_cast<long>(x[1]);
+    s.kinetic_energy = x[2], s.strain_energy = x[3], s.external_work = x[4];
+    s.momentum = {x[5], x[6], x[7]};
+    s.external_impulse = {x[8], x[9], x[10]};
+    s.min_jacobian = x[11], s.rms_velocity_change = x[12];
+    for (int b = 0; b < bodies; ++b) {
+      const double* y = x + kSampleColumns + kBodyColumns * static_cast<std::size_t>(b);
+      s.body_kinetic.push_back(y[0]);
+      s.body_strain.push_back(y[1]);
+      s.body_mass.push_back(y[2]);
+      s.body_momentum.push_back({y[3], y[4], y[5]});
+      s.body_com_velocity.push_back({y[6], y[7], y[8]});
+    }
+  }
+  return out;
+}
+
+// --- .pvd entries: times and '\n'-joined names ---
+
+void write_pvd(Hdf5Writer& w, const std::string& group, const PvdEntries& entries) {
+  std::vector<double> times;
+  std::string names;
+  for (const auto& [t, name] : entries) {
+    times.push_back(t);
+    names += name + '\n';
+  }
+  w.write(group + "/times", times, {h(times.size())});
+  w.write(group + "/files", names);
+}
+
+PvdEntries read_pvd(const Hdf5Reader& r, const std::string& group) {
+  const auto count = r.shape(group + "/times");
+  if (count.size() != 1) throw Hdf5Error("dataset " + group + "/times is not a list");
+  const auto times = r.doubles(group + "/times", count);
+  std::istringstream names(r.text(group + "/files"));
+  PvdEntries out;
+  for (double t : times) {
+    std::string name;
+    if (!std::getline(names, name)) throw Hdf5Error("dataset " + group + "/files has fewer names than times");
+    out.emplace_back(t, name);
+  }
+  return out;
+}
+
+// --- the input check ---
+
+/// "/bodies/0/velocity" -> "bodies[0].velocity"
+std::string dotted(const std::string& pointer) {
+  std::string out;
+  std::istringstream parts(pointer);
+  std::string part;
+  while (std::getline(parts, part, '/')) {
+    if (part.empty()) continue;
+    const bool index = part.find_first_not_of("0123456789") == std::string::npos;
+    out += index ? "[" + part + "]" : (out.empty() ? "" : ".") + part;
+  }
+  return out.empty() ? "(root)" : out;
+}
+
+void check_same_physics(const std::filesystem::path& file, const json& written, const json& input) {
+  if (physics_hash(written) == physics_hash(input)) return;
+  std::string changed;
+  int listed = 0;
+  for (const auto& op : json::diff(physics_of(written), physics_of(input))) {
+    if (listed++ == 5) {
+      changed += ", ...";
+      break;
+    }
+    changed += (changed.empty() ? "" : ", ") + dotted(op["path"].get<std::string>());
+  }
+  throw InputError({{file.string(), "a checkpoint of an input with other physics (changed: " + changed + ")",
+                     "a checkpoint of this input; a restart may change only title, output, checks, "
+                     "solver.end_time and solver.max_steps (docs/output.md)"}});
+}
+
+// --- the file ---
+
+template <int D>
+void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& run, const History& history,
+                    const json& input) {
+  const auto& ps = sim.particles;
+  const hsize_t n = h(ps.size());
+  w.write("format", std::string(kFormat));
+  w.write("format_version", std::int64_t{kCheckpointFormatVersion});
+  w.write("matpoint_version", std::string(kVersion));
+  w.write("dimension", std::int64_t{D});
+  w.write("input", input.dump());
+  w.write("physics_hash", physics_hash(input));
+
+  w.write("particles/x", flat(ps.x), {n, D});
+  w.write("particles/v", flat(ps.v), {n, D});
+  w.write("particles/mass", ps.mass, {n});
+  w.write("particles/volume0", ps.volume0, {n});
+  w.write("particles/size0", flat(ps.size0), {n, D});
+  w.write("particles/F", flat(ps.F), {n, D, D});
+  w.write("particles/stress", flat(ps.stress), {n, D, D});
+  w.write("particles/L", flat(ps.L), {n, D, D});
+  w.write("particles/material", convert<std::int32_t>(ps.material), {n});
+  w.write("particles/body", convert<std::int32_t>(ps.body), {n});
+  w.write("particles/id", convert<std::int64_t>(ps.id), {n});
+  w.write("particles/state_stride", std::int64_t{ps.state_stride});
+  w.write("particles/state", ps.state, {n, h(static_cast<std::size_t>(ps.state_stride))});
+  w.write("particles/track_corners", std::int64_t{ps.track_corners ? 1 : 0});
+  std::vector<double> corners;
+  for (const auto& c : ps.corners)
+    for (const auto& x : c) corners.insert(corners.end(), x.data(), x.data() + D);
+  w.write("particles/corners", corners, {h(ps.corners.size()), ParticleSet<D>::kCorners, D});
+
+  w.write("simulation/time", sim.time);
+  w.write("simulation/step", std::int64_t{sim.step});
+  w.write("simulation/external_work", sim.external_work);
+  w.write("simulation/external_impulse",
+          std::vector<double>(sim.external_impulse.data(), sim.external_impulse.data() + D), {D});
+  w.write("simulation/initial_velocity", flat(sim.initial_velocity), {h(sim.initial_velocity.size()), D});
+  w.write("simulation/initial_position", flat(sim.initial_position), {h(sim.initial_position.size()), D});
+
+  w.write("run/dt", run.dt);
+  w.write("run/momentum_scale", run.momentum_scale);
+  w.write("run/total_mass", run.total_mass);
+  w.write("run/outputs", std::int64_t{run.outputs});
+  w.write("run/next_output_time", run.next_output_time);
+  w.write("run/last_recorded_step", std::int64_t{run.last_recorded_step});
+  w.write("run/next_fmpm_time", run.next_fmpm_time);
+  w.write("run/fmpm_loops", std::int64_t{run.fmpm_loops});
+  w.write("run/fmpm_passes", std::int64_t{run.fmpm_passes});
+  w.write("run/fmpm_seconds", run.fmpm_seconds);
+  w.write("run/step_wall", run.step_wall);
+  w.write("run/step_cpu", run.step_cpu);
+  w.write("run/wall", run.wall);
+  w.write("run/threads", std::int64_t{run.threads});
+  write_pvd(w, "run/results_pvd", run.results);
+  write_pvd(w, "run/domains_pvd", run.domains);
+
+  const std::size_t width = kSampleColumns + kBodyColumns * static_cast<std::size_t>(history.body_count);
+  w.write("history/body_count", std::int64_t{history.body_count});
+  w.write("history/samples", history_rows(history), {h(history.samples.size()), h(width)});
+}
+
+template <int D>
+void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, History& history) {
+  auto& ps = sim.particles;
+  const auto xs = r.shape("particles/x");
+  if (xs.size() != 2 || xs[1] != D) throw Hdf5Error("dataset particles/x is not an n x D array");
+  const hsize_t n = xs[0];
+  unflat(r.doubles("particles/x", {n, D}), ps.x);
+  unflat(r.doubles("particles/v", {n, D}), ps.v);
+  ps.mass = r.doubles("particles/mass", {n});
+  ps.volume0 = r.doubles("particles/volume0", {n});
+  unflat(r.doubles("particles/size0", {n, D}), ps.size0);
+  unflat(r.doubles("particles/F", {n, D, D}), ps.F);
+  unflat(r.doubles("particles/stress", {n, D, D}), ps.stress);
+  unflat(r.doubles("particles/L", {n, D, D}), ps.L);
+  ps.material = convert<int>(r.int32s("particles/material", {n}));
+  ps.body = convert<int>(r.int32s("particles/body", {n}));
+  ps.id = convert<long>(r.int64s("particles/id", {n}));
+  ps.state_stride = static_cast<int>(r.integer("particles/state_stride"));
+  ps.state = r.doubles("particles/state", {n, h(static_cast<std::size_t>(ps.state_stride))});
+  ps.track_corners = r.integer("particles/track_corners") != 0;
+  const auto corners =
+      r.doubles("particles/corners", {ps.track_corners ? n : 0, ParticleSet<D>::kCorners, D});
+  ps.corners.resize(ps.track_corners ? n : 0);
+  for (std::size_t p = 0; p < ps.corners.size(); ++p)
+    for (int k = 0; k < ParticleSet<D>::kCorners; ++k)
+      for (int a = 0; a < D; ++a) ps.corners[p][k][a] = corners[(p * ParticleSet<D>::kCorners + k) * D + a];
+
+  sim.time = r.number("simulation/time");
+  sim.step = r.integer("simulation/step");
+  sim.external_work = r.number("simulation/external_work");
+  const auto impulse = r.doubles("simulation/external_impulse", {D});
+  for (int a = 0; a < D; ++a) sim.external_impulse[a] = impulse[a];
+  unflat(r.doubles("simulation/initial_velocity", {n, D}), sim.initial_velocity);
+  unflat(r.doubles("simulation/initial_position", {n, D}), sim.initial_position);
+
+  run.dt = r.number("run/dt");
+  run.momentum_scale = r.number("run/momentum_scale");
+  run.total_mass = r.number("run/total_mass");
+  run.outputs = r.integer("run/outputs");
+  run.next_output_time = r.number("run/next_output_time");
+  run.last_recorded_step = r.integer("run/last_recorded_step");
+  run.next_fmpm_time = r.number("run/next_fmpm_time");
+  run.fmpm_loops = r.integer("run/fmpm_loops");
+  run.fmpm_passes = r.integer("run/fmpm_passes");
+  run.fmpm_seconds = r.number("run/fmpm_seconds");
+  run.step_wall = r.number("run/step_wall");
+  run.step_cpu = r.number("run/step_cpu");
+  run.wall = r.number("run/wall");
+  run.threads = static_cast<int>(r.integer("run/threads"));
+  run.results = read_pvd(r, "run/results_pvd");
+  run.domains = read_pvd(r, "run/domains_pvd");
+
+  const auto bodies = r.integer("history/body_count");
+  if (bodies != history.body_count)
+    throw Hdf5Error("history/body_count is " + std::to_string(bodies) + ", the input has " +
+                    std::to_string(history.body_count) + " bodies");
+  const auto rows = r.shape("history/samples");
+  const std::size_t width = kSampleColumns + kBodyColumns * static_cast<std::size_t>(bodies);
+  if (rows.size() != 2 || rows[1] != width) throw Hdf5Error("dataset history/samples has the wrong width");
+  history.samples = history_samples(r.doubles("history/samples", rows), rows[0], history.body_count);
+}
+
+InputError damaged(const std::filesystem::path& file, const std::string& what) {
+  return InputError({{file.string(), "a file that is not a usable checkpoint: " + what,
+                      "a complete matpoint checkpoint (written as " + std::string(kCheckpointFile) +
+                          ", with the one before it kept as " + kPreviousCheckpointFile + ")"}});
+}
+
+}  // namespace
+
+json physics_of(const json& input) {
+  json physics = input;
+  if (!physics.is_object()) return physics;
+  for (const char* key : {"title", "output", "checks"}) physics.erase(key);
+  if (const auto solver = physics.find("solver"); solver != physics.end() && solver->is_object()) {
+    solver->erase("end_time");
+    solver->erase("max_steps");
+  }
+  return physics;
+}
+
+std::string physics_hash(const json& input) {
+  const std::string text = physics_of(input).dump();
+  std::ostringstream out;
+  out << std::hex << std::setw(16) << std::setfill('0') << fnv1a64(text.data(), text.size());
+  return out.str();
+}
+
+template <int D>
+void write_checkpoint(const std::filesystem::path& file, const std::filesystem::path& previous,
+                      const Simulation<D>& sim, const RunCounters& run, const History& history,
+                      const json& input) {
+  const std::filesystem::path partial = file.string() + ".partial";
+  {
+    Hdf5Writer w(partial);
+    write_contents<D>(w, sim, run, history, input);
+    w.close();
+  }
+  sync_to_disk(partial);
+  // Keep the current checkpoint as `previous` (a second name for the same file, so `file` never
+  // goes missing), then move the new one onto `file`.
+  std::error_code ec;
+  if (std::filesystem::exists(file, ec)) {
+    const std::filesystem::path link = previous.string() + ".partial";
+    std::filesystem::remove(link, ec);
+    std::filesystem::create_hard_link(file, link, ec);
+    if (ec) std::filesystem::copy_file(file, link, std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::rename(link, previous);
+  }
+  std::filesystem::rename(partial, file);
+  sync_to_disk(file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
+}
+
+template <int D>
+void read_checkpoint(const std::filesystem::path& file, const json& input, Simulation<D>& sim,
+                     RunCounters& run, History& history) {
+  try {
+    const Hdf5Reader r(file);
+    if (!r.has("format") || r.text("format") != kFormat) throw Hdf5Error("it is not a matpoint checkpoint");
+    const auto version = r.integer("format_version");
+    if (version != kCheckpointFormatVersion)
+      throw Hdf5Error("format version " + std::to_string(version) + ", this matpoint reads version " +
+                      std::to_string(kCheckpointFormatVersion));
+    const auto dim = r.integer("dimension");
+    if (dim != D)
+      throw Hdf5Error("a " + std::to_string(dim) + "-D run, the input is " + std::to_string(D) + "-D");
+    json written;
+    try {
+      written = json::parse(r.text("input"));
+    } catch (const json::exception&) {
+      throw Hdf5Error("dataset input is not JSON");
+    }
+    check_same_physics(file, written, input);  // InputError: passes through
+    read_contents<D>(r, sim, run, history);
+  } catch (const Hdf5Error& e) {
+    throw damaged(file, e.what());
+  }
+}
+
+#define MATPOINT_INSTANTIATE(D)                                                                             \
+  template void write_checkpoint<D>(const std::filesystem::path&, const std::filesystem::path&,             \
+                                    const Simulation<D>&, const RunCounters&, const History&, const json&); \
+  template void read_checkpoint<D>(const std::filesystem::path&, const json&, Simulation<D>&, RunCounters&, \
+                                   History&);
+MATPOINT_INSTANTIATE(1)
+MATPOINT_INSTANTIATE(2)
+MATPOINT_INSTANTIATE(3)
+#undef MATPOINT_INSTANTIATE
+
+}  // namespace matpoint
