@@ -246,7 +246,7 @@ void expect_restart_equals_uninterrupted(const std::string& tag, const Spec& spe
   EXPECT_EQ(file_text(whole / "history.csv"), file_text(parts / "history.csv"));
   EXPECT_EQ(file_text(whole / "results.pvd"), file_text(parts / "results.pvd"));
   const long last = reference.summary["outputs"].get<long>() - 1;
-  char name[32];
+  char name[48];
   std::snprintf(name, sizeof name, "particles_%06ld.vtu", last);
   EXPECT_EQ(file_text(whole / name), file_text(parts / name)) << name;
   EXPECT_EQ(rest.summary["checks_pass"], reference.summary["checks_pass"]);
@@ -381,14 +381,44 @@ TEST(CheckpointInput, ScheduleKeysAreReadAndChecked) {
     return std::string("accepted");
   };
   EXPECT_EQ(issues(R"({"every_minutes": 30})"), "accepted");
-  EXPECT_NE(issues("{}").find("output.checkpoint: got {}, expected an object with every_steps"), std::string::npos)
-      << issues("{}");
-  EXPECT_NE(issues(R"({"every_minutes": 0})").find("output.checkpoint.every_minutes: got 0, expected a number > 0"),
+  EXPECT_NE(issues("{}").find("output.checkpoint: got {}, expected an object with every_steps"),
             std::string::npos)
+      << issues("{}");
+  EXPECT_NE(
+      issues(R"({"every_minutes": 0})").find("output.checkpoint.every_minutes: got 0, expected a number > 0"),
+      std::string::npos)
       << issues(R"({"every_minutes": 0})");
-  EXPECT_NE(issues(R"({"every_steps": 0})").find("output.checkpoint.every_steps: got 0, expected an integer >= 1"),
-            std::string::npos);
+  EXPECT_NE(
+      issues(R"({"every_steps": 0})").find("output.checkpoint.every_steps: got 0, expected an integer >= 1"),
+      std::string::npos);
   EXPECT_NE(issues(R"({"each": 3})").find("output.checkpoint.each"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(CheckpointSchedule, WallClockScheduleWritesAndKeepsThePreviousCheckpoint) {
+  Spec spec = parse_spec(input_text(2, "linear", R"("flip")"));
+  spec.output.checkpoint = {0, 1e-12};  // every_minutes: due after every step
+  spec.solver.max_steps = 5;
+  const fs::path dir = scratch("every_minutes");
+  const RunResult result = run_in(spec, dir);
+  ASSERT_EQ(result.exit_code, 0) << result.message;
+  EXPECT_EQ(result.summary["checkpoint_step"], 5);
+  EXPECT_EQ(Hdf5Reader(dir / kCheckpointFile).integer("simulation/step"), 5);
+  EXPECT_EQ(Hdf5Reader(dir / kPreviousCheckpointFile).integer("simulation/step"), 4);
+}
+
+TEST(CheckpointSchedule, NoCheckpointWithoutScheduleOrInterrupt) {
+  Spec spec = parse_spec(input_text(2, "linear", R"("flip")"));
+  spec.output.checkpoint = {};
+  spec.solver.max_steps = 3;
+  const fs::path dir = scratch("unscheduled");
+  const RunResult result = run_in(spec, dir);
+  ASSERT_EQ(result.exit_code, 0) << result.message;
+  EXPECT_FALSE(fs::exists(dir / kCheckpointFile));
+  EXPECT_TRUE(result.summary["checkpoint"].is_null());
 }
 
 }  // namespace

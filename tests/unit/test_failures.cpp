@@ -62,10 +62,12 @@ TEST(Failures, InvertedParticleStopsTheRunNamingDetF) {
   ASSERT_EQ(result.history.samples.size(), 1u) << "the last good state (time 0) is kept";
 }
 
-/// One step of a two-disks simulation whose particle `p` (storage index) was damaged first.
+/// The message of the second step of two-disks when `damage` hit the particles after the first.
+/// MUSL (the example's) moves the particles first, USF updates the strains first.
 template <class Damage>
-std::string failure_after(Damage damage) {
+std::string failure_after(UpdateScheme scheme, Damage damage) {
   Spec spec = test::load_example("two-disks");
+  spec.solver.scheme = scheme;
   auto sim = build_simulation<2>(spec);
   ExplicitStepper<2, TensorStencils<2, QuadraticBSplineBasis>> stepper(sim);
   stepper.step(1e-3);
@@ -82,20 +84,23 @@ std::string failure_after(Damage damage) {
 
 TEST(Failures, NonFiniteVelocityIsNamed) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::string message = failure_after([&](ParticleSet<2>& ps) { ps.v[7][1] = nan; });
+  const std::string message =
+      failure_after(UpdateScheme::MUSL, [&](ParticleSet<2>& ps) { ps.v[7][1] = nan; });
   EXPECT_NE(message.find("non-finite velocity"), std::string::npos) << message;
 }
 
 TEST(Failures, NonFiniteStressIsNamed) {
   // F_xx = 1e306: det F is finite and positive, but lambda tr(eps) overflows.
-  const std::string message = failure_after([&](ParticleSet<2>& ps) { ps.F[3](0, 0) = 1e306; });
+  const std::string message =
+      failure_after(UpdateScheme::USF, [&](ParticleSet<2>& ps) { ps.F[3](0, 0) = 1e306; });
   EXPECT_NE(message.find("non-finite stress"), std::string::npos) << message;
 }
 
 TEST(Failures, NonFiniteDeformationGradientIsNamed) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::string message = failure_after([&](ParticleSet<2>& ps) { ps.F[3](1, 0) = nan; });
-  EXPECT_NE(message.find("det F = nan (needs > 0)"), std::string::npos) << message;
+  const std::string message =
+      failure_after(UpdateScheme::USF, [&](ParticleSet<2>& ps) { ps.F[3](1, 0) = nan; });
+  EXPECT_NE(message.find("nan (needs > 0)"), std::string::npos) << message;  // glibc may print -nan
 }
 
 TEST(Failures, CourantAboveTheMeasuredLimitWarnsInTheSummary) {
