@@ -11,6 +11,14 @@ constexpr const char* kChecksum = "fnv1a64";
 /// HDF5 prints its error stack on stderr by default; we report errors ourselves.
 void silence_hdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
+/// File access without HDF5's file locks, which fail on file systems without flock (NFS on many
+/// clusters); a checkpoint is written by one process under a temporary name, so no lock is needed.
+Hdf5Handle unlocked_access() {
+  Hdf5Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  if (access.valid()) H5Pset_file_locking(access.get(), false, true);
+  return access;
+}
+
 std::string shape_text(const std::vector<hsize_t>& shape) {
   std::ostringstream out;
   out << '(';
@@ -56,7 +64,8 @@ std::uint64_t fnv1a64(const void* data, std::size_t bytes, std::uint64_t seed) {
 
 Hdf5Writer::Hdf5Writer(const std::filesystem::path& file) : path_(file) {
   silence_hdf5();
-  file_ = Hdf5Handle(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  const Hdf5Handle access = unlocked_access();
+  file_ = Hdf5Handle(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), H5Fclose);
   if (!file_.valid()) throw Hdf5Error("cannot create the HDF5 file " + file.string());
 }
 
@@ -121,7 +130,8 @@ Hdf5Reader::Hdf5Reader(const std::filesystem::path& file) : path_(file) {
   silence_hdf5();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) throw Hdf5Error("no such file");
-  file_ = Hdf5Handle(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  const Hdf5Handle access = unlocked_access();
+  file_ = Hdf5Handle(H5Fopen(file.c_str(), H5F_ACC_RDONLY, access.get()), H5Fclose);
   if (!file_.valid()) throw Hdf5Error("not a readable HDF5 file (truncated or damaged)");
 }
 
