@@ -211,8 +211,8 @@ class ExplicitStepper {
     if (!v.allFinite() || !s_.particles.x[p].allFinite())
       what << "has a non-finite velocity (" << v.transpose() << ") or position";
     else
-      what << "left the grid domain [" << s_.grid.origin.transpose() << "] to [" << s_.grid.domain_max().transpose()
-           << "] (velocity (" << v.transpose() << "))";
+      what << "left the grid domain [" << s_.grid.origin.transpose() << "] to ["
+           << s_.grid.domain_max().transpose() << "] (velocity (" << v.transpose() << "))";
     fail(p, what.str());
   }
 

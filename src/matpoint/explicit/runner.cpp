@@ -1,5 +1,14 @@
 #include "matpoint/explicit/runner.hpp"
 
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <iomanip>
+#include <sstream>
+
 #include "matpoint/analysis/diagnostics.hpp"
 #include "matpoint/analysis/history.hpp"
 #include "matpoint/analysis/measures_eval.hpp"
@@ -16,15 +25,6 @@
 #include "matpoint/shape/domains.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
-
-#include <chrono>
-#include <cmath>
-#include <csignal>
-#include <cstdio>
-#include <cstdlib>
-#include <ctime>
-#include <iomanip>
-#include <sstream>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -128,10 +128,11 @@ RunCounters start_state(const Spec& spec, const RunOptions& options, Simulation<
   if (!options.restart.empty()) {
     read_checkpoint<D>(options.restart, spec.echo, sim, run, history);
     if (run.threads != current_threads())
-      std::fprintf(stderr,
-                   "warning: the checkpoint was written by a run with %d thread(s), this one has %d: the results "
-                   "will differ from an uninterrupted run in round-off (same thread count: bit for bit)\n",
-                   run.threads, current_threads());
+      std::fprintf(
+          stderr,
+          "warning: the checkpoint was written by a run with %d thread(s), this one has %d: the results "
+          "will differ from an uninterrupted run in round-off (same thread count: bit for bit)\n",
+          run.threads, current_threads());
     return run;
   }
   run.dt = stable_time_step(sim);
@@ -153,7 +154,7 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
 
   PvdCollection pvd(out_dir / "results.pvd");
   PvdCollection domains_pvd(out_dir / "domains.pvd");  // GIMP / CPDI particle domains (docs/output.md)
-  pvd.restore(run.results);  // a restart rewrites them as the checkpoint knew them
+  pvd.restore(run.results);                            // a restart rewrites them as the checkpoint knew them
   domains_pvd.restore(run.domains);
   const bool write_domains = spec.output.particles && has_particle_domains(spec.solver.shape);
   long outputs = run.outputs;
@@ -183,7 +184,9 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
   };
 
   ExplicitStepper<D, Stencils> stepper(sim);
-  if (restarting) stepper.restore({run.next_fmpm_time, run.total_mass, {run.fmpm_loops, run.fmpm_passes, run.fmpm_seconds}});
+  if (restarting)
+    stepper.restore(
+        {run.next_fmpm_time, run.total_mass, {run.fmpm_loops, run.fmpm_passes, run.fmpm_seconds}});
   OutputSchedule schedule(spec.output, sim.time, run.next_output_time);
   Progress progress(options.progress, spec.solver.end_time);
   long last_recorded_step = run.last_recorded_step;
@@ -196,7 +199,9 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
   RunResult result;
   const auto wall_start = std::chrono::steady_clock::now();
   double step_wall = run.step_wall, step_cpu = run.step_cpu;
-  const auto wall_now = [&] { return run.wall + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
+  const auto wall_now = [&] {
+    return run.wall + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
 
   // A checkpoint holds the state after a completed step with the scheduled outputs up to it; it is
   // taken before the extra output of a run's last step, so a restart repeats the outputs exactly.
@@ -224,7 +229,8 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
     checkpoint_step = sim.step;
   };
   auto checkpoint_due = [&] {
-    const auto minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_wall).count() / 60;
+    const auto minutes =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_wall).count() / 60;
     return (every.every_steps > 0 && sim.step % every.every_steps == 0) ||
            (every.every_minutes > 0 && minutes >= every.every_minutes);
   };
@@ -275,7 +281,8 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
   s["message"] = result.message;
   s["restarted_from"] = restarting ? nlohmann::json(options.restart.string()) : nlohmann::json(nullptr);
   s["restarted_at_step"] = restarting ? nlohmann::json(restart_step) : nlohmann::json(nullptr);
-  s["checkpoint"] = checkpoint_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(checkpoint_file.string());
+  s["checkpoint"] =
+      checkpoint_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(checkpoint_file.string());
   s["checkpoint_step"] = checkpoint_step >= 0 ? nlohmann::json(checkpoint_step) : nlohmann::json(nullptr);
   s["warnings"] = nlohmann::json::array();  // e.g. a Courant number above the measured stability limit
   if (const auto warning = courant_warning(spec.solver); !warning.empty()) s["warnings"].push_back(warning);

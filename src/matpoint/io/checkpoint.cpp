@@ -24,7 +24,8 @@ hsize_t h(std::size_t n) { return static_cast<hsize_t>(n); }
 
 // --- fixed-size Eigen vectors / matrices <-> flat row-major arrays ---
 
-template <class M> std::vector<double> flat(const std::vector<M>& in) {
+template <class M>
+std::vector<double> flat(const std::vector<M>& in) {
   std::vector<double> out;
   out.reserve(in.size() * M::SizeAtCompileTime);
   for (const auto& m : in)
@@ -33,7 +34,8 @@ template <class M> std::vector<double> flat(const std::vector<M>& in) {
   return out;
 }
 
-template <class M> void unflat(const std::vector<double>& in, std::vector<M>& out) {
+template <class M>
+void unflat(const std::vector<double>& in, std::vector<M>& out) {
   out.resize(in.size() / M::SizeAtCompileTime);
   std::size_t k = 0;
   for (auto& m : out)

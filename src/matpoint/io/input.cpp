@@ -515,8 +515,8 @@ class SpecReader {
     read_solver(Object(top.required("solver"),
                        {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
                         "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance"}));
-    read_output(
-        Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields", "checkpoint"}));
+    read_output(Object(top.optional("output"),
+                       {"every_steps", "every_time", "particles", "plots", "fields", "checkpoint"}));
     read_checks(top.optional("checks"));
     if (grid_ok_) check_stencil_fits();
     if (issues_.empty()) check_step_count();
