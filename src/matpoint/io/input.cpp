@@ -982,6 +982,7 @@ class SpecReader {
 
   /// A number (a constant) or {"table": [[t0, v0], [t1, v1], ...]} with strictly increasing t.
   static std::optional<TimeFunction> read_time_function(const Value& v, const std::string& expected) {
+    if (!v.usable(expected)) return std::nullopt;  // absent: an issue when required (fuzzer finding)
     if (v.get().is_number()) {
       const auto x = v.number();
       if (!x) return std::nullopt;
