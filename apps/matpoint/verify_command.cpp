@@ -94,8 +94,8 @@ int VerifyCommand::run() const {
     mapping = method_ == "impm" ? Mapping::IMPM : Mapping::MlsVelocity;
     const ShapeKind needed = method_ == "impm" ? ShapeKind::Linear : ShapeKind::CPDI1;
     if (!shape_.empty() && shape != needed) {
-      std::fprintf(stderr, "input error: --shape: got %s, expected %s (or none) with --method %s\n", shape_.c_str(),
-                   shape_name(needed), method_.c_str());
+      std::fprintf(stderr, "input error: --shape: got %s, expected %s (or none) with --method %s\n",
+                   shape_.c_str(), shape_name(needed), method_.c_str());
       return kExitBadInput;
     }
     shape = needed;
@@ -135,9 +135,8 @@ int VerifyCommand::run() const {
     if (!json_)
       std::printf("%s (%d-D, %s, G = %g, %d ppc, T = %g)\n  %-8s %-10s %-12s %-12s %-12s %-12s %-12s %s\n",
                   c.name.c_str(), c.options.dim, method_name(c.options.shape, c.options.mapping).c_str(),
-                  c.options.amplitude,
-                  c.options.particles_per_cell, c.options.end_time, "h", "steps", "displacement", "stress",
-                  "density", "velocity", "grid vel.", "min J");
+                  c.options.amplitude, c.options.particles_per_cell, c.options.end_time, "h", "steps",
+                  "displacement", "stress", "density", "velocity", "grid vel.", "min J");
     std::fflush(stdout);
     auto outcome = run_case(c, [&](const MmsResult& r) {
       if (json_) return;
@@ -186,8 +185,8 @@ int VerifyCommand::run() const {
   for (const auto& ch : comparisons) {
     all_pass = all_pass && ch.pass;
     if (!json_)
-      std::printf("check %-4s %s: %.4e < %.4e  [%s]\n", ch.pass ? "PASS" : "FAIL", ch.name.c_str(), ch.measured,
-                  ch.expected, ch.source.c_str());
+      std::printf("check %-4s %s: %.4e < %.4e  [%s]\n", ch.pass ? "PASS" : "FAIL", ch.name.c_str(),
+                  ch.measured, ch.expected, ch.source.c_str());
   }
   if (json_)
     std::printf("%s\n", checks_json(outcomes, comparisons).dump(2).c_str());

@@ -420,12 +420,12 @@ VerificationCase make_case(const std::string& problem, ShapeKind shape, double a
 
 std::vector<VerificationCase> verification_suite(bool full) {
   std::vector<VerificationCase> s;
-  s.push_back(make_case("mms-1d", ShapeKind::Linear, 1e-4, full));    // T5
-  s.push_back(make_case("mms-1d", ShapeKind::Linear, 0.1, full));     // T6
-  s.push_back(make_case("mms-1d", ShapeKind::CPDI1, 0.1, full));      // T12
-  s.push_back(make_case("mms-1d", ShapeKind::BSpline2, 1e-4, full));  // issue 3 item 4
-  s.push_back(make_case("mms-2d", ShapeKind::Linear, 1e-4, full));    // T9
-  s.push_back(make_case("mms-2d", ShapeKind::Linear, 0.05, full));    // T10
+  s.push_back(make_case("mms-1d", ShapeKind::Linear, 1e-4, full));                      // T5
+  s.push_back(make_case("mms-1d", ShapeKind::Linear, 0.1, full));                       // T6
+  s.push_back(make_case("mms-1d", ShapeKind::CPDI1, 0.1, full));                        // T12
+  s.push_back(make_case("mms-1d", ShapeKind::BSpline2, 1e-4, full));                    // issue 3 item 4
+  s.push_back(make_case("mms-2d", ShapeKind::Linear, 1e-4, full));                      // T9
+  s.push_back(make_case("mms-2d", ShapeKind::Linear, 0.05, full));                      // T10
   s.push_back(make_case("mms-1d", ShapeKind::Linear, 0.1, full, Mapping::IMPM));        // T7
   s.push_back(make_case("mms-1d", ShapeKind::CPDI1, 0.1, full, Mapping::MlsVelocity));  // T12-like, T14
   s.push_back(make_case("mms-2d", ShapeKind::Linear, 0.1, full, Mapping::IMPM));        // T11
@@ -490,7 +490,8 @@ VerificationOutcome run_case(const VerificationCase& c, const std::function<void
       if (r.cells != x.cells) continue;
       VerificationCheck check;
       check.name = c.name + ": " + x.quantity + " error at h = 1/" + std::to_string(x.cells);
-      check.method = method_name(c.options.shape, c.options.mapping) + ", particle quadrature (extraction A8)";
+      check.method =
+          method_name(c.options.shape, c.options.mapping) + ", particle quadrature (extraction A8)";
       check.measured = r.finished ? mms_quantity(r, x.quantity) : std::nan("");
       check.relation = "<";
       check.expected = x.below;
@@ -510,20 +511,23 @@ std::vector<VerificationCheck> comparison_checks(const std::vector<VerificationO
     if (o.dim != 1 || !(impm || icpdi)) continue;
     for (const auto& b : outcomes) {
       const auto& ob = b.spec.options;
-      if (ob.dim != 1 || ob.shape != ShapeKind::CPDI1 || ob.mapping != Mapping::MPM || ob.amplitude != o.amplitude)
+      if (ob.dim != 1 || ob.shape != ShapeKind::CPDI1 || ob.mapping != Mapping::MPM ||
+          ob.amplitude != o.amplitude)
         continue;
       for (const auto& ra : a.runs)
         for (const auto& rb : b.runs) {
           if (ra.cells != rb.cells || (ra.cells != 512 && ra.cells != 1024 && ra.cells != 2048)) continue;
           VerificationCheck check;
-          check.name = a.spec.name + " vs " + b.spec.name + ": stress error at h = 1/" + std::to_string(ra.cells);
+          check.name =
+              a.spec.name + " vs " + b.spec.name + ": stress error at h = 1/" + std::to_string(ra.cells);
           check.method = method_name(o.shape, o.mapping) + " against cpdi1, particle quadrature";
           check.measured = ra.finished ? ra.stress : std::nan("");
           check.relation.assign(1, '<');  // (not = "<": a GCC 12 -Wrestrict false positive here)
           check.expected = rb.finished ? rb.stress : std::numeric_limits<double>::infinity();
           check.pass = std::isfinite(check.measured) && check.measured < check.expected;
-          check.source = impm ? "Gong 2015 Fig. 6.3 (\"IMPM has better convergence than CPDI\"); extraction T15"
-                              : "Gong 2015 Fig. 6.4 (improved CPDI beats CPDI on fine meshes); extraction T14";
+          check.source =
+              impm ? "Gong 2015 Fig. 6.3 (\"IMPM has better convergence than CPDI\"); extraction T15"
+                   : "Gong 2015 Fig. 6.4 (improved CPDI beats CPDI on fine meshes); extraction T14";
           checks.push_back(check);
         }
     }
@@ -544,15 +548,15 @@ nlohmann::json checks_json(const std::vector<VerificationOutcome>& outcomes,
   for (const auto& o : outcomes) all.insert(all.end(), o.checks.begin(), o.checks.end());
   all.insert(all.end(), extra.begin(), extra.end());
   for (const auto& c : all)
-      list.push_back(
-          {{"name", c.name},
-           {"method", c.method},
-           {"measured", std::isfinite(c.measured) ? nlohmann::json(c.measured) : nlohmann::json(nullptr)},
-           {"expected", c.expected},
-           {"tolerance", c.tolerance},
-           {"relation", c.relation},
-           {"pass", c.pass},
-           {"source", c.source}});
+    list.push_back(
+        {{"name", c.name},
+         {"method", c.method},
+         {"measured", std::isfinite(c.measured) ? nlohmann::json(c.measured) : nlohmann::json(nullptr)},
+         {"expected", c.expected},
+         {"tolerance", c.tolerance},
+         {"relation", c.relation},
+         {"pass", c.pass},
+         {"source", c.source}});
   return list;
 }
 

@@ -46,9 +46,9 @@ struct MmsOptions {
   int dim = 1;  // 1: the bar (§4.5); 2: the axis-aligned square (§4.7)
   ShapeKind shape = ShapeKind::Linear;
   Mapping mapping = Mapping::MPM;  // impm: Gong ch. 5; mls_velocity with cpdi1: improved CPDI (§6.6)
-  double amplitude = 1e-4;     // G
-  int particles_per_cell = 2;  // per direction, cell-centred (extraction A1, A2)
-  double end_time = 0.02;      // T: one period (A9)
+  double amplitude = 1e-4;         // G
+  int particles_per_cell = 2;      // per direction, cell-centred (extraction A1, A2)
+  double end_time = 0.02;          // T: one period (A9)
   int threads = 1;
   // Zero the constrained components of the old node velocity too (extraction A24, Gong's loop);
   // false: matpoint's default (Nairn 2026), where the FLIP increment carries the wall reaction.

@@ -124,7 +124,8 @@ class ExplicitStepper {
   void record_momentum_difference() {
     Vec<D> grid = Vec<D>::Zero(), particles = Vec<D>::Zero();
     for (const auto& p : s_.fields.momentum) grid += p;
-    for (std::size_t p = 0; p < s_.particles.size(); ++p) particles += s_.particles.mass[p] * s_.particles.v[p];
+    for (std::size_t p = 0; p < s_.particles.size(); ++p)
+      particles += s_.particles.mass[p] * s_.particles.v[p];
     s_.grid_momentum_difference = grid - particles;
   }
 

@@ -518,9 +518,10 @@ class SpecReader {
     read_bodies(top.required("bodies"));
     read_conditions(top.optional("boundary_conditions"));
     read_loads(Object(top.optional("loads"), {"gravity"}));
-    read_solver(Object(top.required("solver"),
-                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
-                        "mapping", "mls", "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance"}));
+    read_solver(
+        Object(top.required("solver"),
+               {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape", "mapping",
+                "mls", "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance"}));
     read_output(
         Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields"}));
     read_checks(top.optional("checks"));
@@ -1058,8 +1059,9 @@ class SpecReader {
       return;
     }
     if (out.mapping == Mapping::IMPM && out.shape != ShapeKind::Linear)
-      mapping.fail("\"impm\" with shape \"linear\" (the cell quadrature uses the bilinear N_i), or "
-                   "\"mls_velocity\" for the other shapes");
+      mapping.fail(
+          "\"impm\" with shape \"linear\" (the cell quadrature uses the bilinear N_i), or "
+          "\"mls_velocity\" for the other shapes");
     if (out.transfer == VelocityTransfer::FMPM || out.transfer == VelocityTransfer::XPIC)
       mapping.fail("\"mpm\" with transfer \"fmpm\" or \"xpic\" (their passes re-map the momentum by mass)");
     const Object mls(mls_value, {"degree", "quadrature", "cell_volume"});

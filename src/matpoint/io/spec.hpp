@@ -118,8 +118,8 @@ struct FmpmSpec {
 /// 2015's IMPM (§5.4: MLS velocity to the nodes, MLS density/stress/body force to cell points,
 /// cell quadrature); or only the MLS velocity (with a CPDI shape: improved CPDI, §6.6).
 enum class Mapping { MPM, IMPM, MlsVelocity };
-enum class CellQuadrature { Centre, Gauss2 };           // one point (eqs. 5.9-5.14), or 2^D Gauss points (A18)
-enum class CellVolume { Full, ParticleFraction };       // Omega_c = cell volume (as printed), or sum of V_p (A17)
+enum class CellQuadrature { Centre, Gauss2 };      // one point (eqs. 5.9-5.14), or 2^D Gauss points (A18)
+enum class CellVolume { Full, ParticleFraction };  // Omega_c = cell volume (as printed), or sum of V_p (A17)
 
 struct MlsSpec {
   int degree = 1;  // 1: linear basis (Gong's "second-order MLS"), 0: Shepard (extraction A14)

@@ -33,14 +33,15 @@ class ParticleBins {
     for (std::size_t p = 0; p < x.size(); ++p) order_[next[cell_[p]]++] = static_cast<Index>(p);
   }
 
-  /// Calls fn(p) for every particle in the cells that [x - r h, x + r h] overlaps (r in cells).
+  /// Calls fn(p) for every particle in the cells that the open box (x - r h, x + r h) overlaps (r
+  /// in cells): every particle closer than r h along each axis, and no whole cell beyond.
   template <class Fn>
   void for_each_near(const Vec<D>& x, double r, Fn&& fn) const {
     std::array<int, D> lo{}, hi{};
     for (int a = 0; a < D; ++a) {
       const double s = (x[a] - grid_->origin[a]) / grid_->h[a];
       lo[a] = std::max(0, static_cast<int>(std::floor(s - r)));
-      hi[a] = std::min(grid_->cells[a] - 1, static_cast<int>(std::floor(s + r)));
+      hi[a] = std::min(grid_->cells[a] - 1, static_cast<int>(std::ceil(s + r)) - 1);  // cell k starts at k
       if (lo[a] > hi[a]) return;
     }
     if constexpr (D == 1) {
