@@ -71,6 +71,7 @@ void fill(Simulation<D>& sim) {
   sim.time = 0.0123456789, sim.step = 1234567, sim.external_work = next();
   for (int a = 0; a < D; ++a) sim.external_impulse[a] = next();
   for (auto& x : sim.initial_velocity) x = Vec<D>::Constant(next());
+  for (int a = 0; a < D; ++a) sim.grid_momentum_difference[a] = next();
 }
 
 RunCounters counters() {
@@ -91,6 +92,8 @@ History history_of(int dim, int bodies) {
     s.time = 0.1 * r + 1e-17, s.step = 10 * r, s.kinetic_energy = 1.0 / 3 + r, s.strain_energy = 2.0 / 7;
     s.external_work = -1.0 / 9, s.momentum = {1e-300, -2.5, 3}, s.external_impulse = {4, 5, 6};
     s.min_jacobian = 0.99, s.rms_velocity_change = 1e-12;
+    s.grid_momentum_difference = {1e-17, -2e-17, 0}, s.checkerboard_velocity = 0.25 + r;
+    s.grid_rms_velocity = 1.0 / 7, s.hourglass_energy = 1e-9;
     for (int b = 0; b < bodies; ++b) {
       s.body_kinetic.push_back(r + b + 0.1), s.body_strain.push_back(0.2), s.body_mass.push_back(0.3);
       s.body_momentum.push_back({1, 2, 3}), s.body_com_velocity.push_back({4, 5, 6.5});
@@ -133,6 +136,7 @@ void round_trip(const std::string& shape, const std::string& transfer) {
   EXPECT_EQ(read.step, written.step);
   EXPECT_EQ(read.external_work, written.external_work);
   EXPECT_EQ(read.external_impulse, written.external_impulse);
+  EXPECT_EQ(read.grid_momentum_difference, written.grid_momentum_difference);
   EXPECT_TRUE(same(read.initial_velocity, written.initial_velocity) &&
               same(read.initial_position, written.initial_position));
   EXPECT_EQ(r.dt, run.dt);
@@ -163,6 +167,10 @@ void round_trip(const std::string& shape, const std::string& transfer) {
     EXPECT_EQ(x.external_impulse, y.external_impulse);
     EXPECT_EQ(x.min_jacobian, y.min_jacobian);
     EXPECT_EQ(x.rms_velocity_change, y.rms_velocity_change);
+    EXPECT_EQ(x.grid_momentum_difference, y.grid_momentum_difference);
+    EXPECT_EQ(x.checkerboard_velocity, y.checkerboard_velocity);
+    EXPECT_EQ(x.grid_rms_velocity, y.grid_rms_velocity);
+    EXPECT_EQ(x.hourglass_energy, y.hourglass_energy);
     EXPECT_EQ(x.body_kinetic, y.body_kinetic);
     EXPECT_EQ(x.body_strain, y.body_strain);
     EXPECT_EQ(x.body_mass, y.body_mass);

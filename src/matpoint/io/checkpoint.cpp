@@ -17,8 +17,10 @@ using Shape = std::vector<hsize_t>;
 using json = nlohmann::json;
 
 constexpr const char* kFormat = "matpoint checkpoint";
-constexpr std::size_t kSampleColumns = 13;  // time, step, 3 energies, momentum[3], impulse[3], min J, rms dv
-constexpr std::size_t kBodyColumns = 9;     // kinetic, strain, mass, momentum[3], centre-of-mass velocity[3]
+// time, step, 3 energies, momentum[3], impulse[3], min J, rms dv, grid momentum difference[3],
+// checkerboard velocity, grid rms velocity, hourglass energy
+constexpr std::size_t kSampleColumns = 19;
+constexpr std::size_t kBodyColumns = 9;  // kinetic, strain, mass, momentum[3], centre-of-mass velocity[3]
 
 hsize_t h(std::size_t n) { return static_cast<hsize_t>(n); }
 
@@ -65,7 +67,13 @@ std::vector<double> history_rows(const History& history) {
                                         s.external_impulse[1],
                                         s.external_impulse[2],
                                         s.min_jacobian,
-                                        s.rms_velocity_change};
+                                        s.rms_velocity_change,
+                                        s.grid_momentum_difference[0],
+                                        s.grid_momentum_difference[1],
+                                        s.grid_momentum_difference[2],
+                                        s.checkerboard_velocity,
+                                        s.grid_rms_velocity,
+                                        s.hourglass_energy};
     out.insert(out.end(), row, row + kSampleColumns);
     for (int b = 0; b < history.body_count; ++b) {
       out.insert(out.end(), {s.body_kinetic[b], s.body_strain[b], s.body_mass[b]});
@@ -88,6 +96,8 @@ std::vector<HistorySample> history_samples(const std::vector<double>& rows, std:
     s.momentum = {x[5], x[6], x[7]};
     s.external_impulse = {x[8], x[9], x[10]};
     s.min_jacobian = x[11], s.rms_velocity_change = x[12];
+    s.grid_momentum_difference = {x[13], x[14], x[15]};
+    s.checkerboard_velocity = x[16], s.grid_rms_velocity = x[17], s.hourglass_energy = x[18];
     for (int b = 0; b < bodies; ++b) {
       const double* y = x + kSampleColumns + kBodyColumns * static_cast<std::size_t>(b);
       s.body_kinetic.push_back(y[0]);
@@ -196,6 +206,9 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   w.write("simulation/external_work", sim.external_work);
   w.write("simulation/external_impulse",
           std::vector<double>(sim.external_impulse.data(), sim.external_impulse.data() + D), {D});
+  w.write("simulation/grid_momentum_difference",
+          std::vector<double>(sim.grid_momentum_difference.data(), sim.grid_momentum_difference.data() + D),
+          {D});
   w.write("simulation/initial_velocity", flat(sim.initial_velocity), {h(sim.initial_velocity.size()), D});
   w.write("simulation/initial_position", flat(sim.initial_position), {h(sim.initial_position.size()), D});
 
@@ -253,6 +266,8 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   sim.external_work = r.number("simulation/external_work");
   const auto impulse = r.doubles("simulation/external_impulse", {D});
   for (int a = 0; a < D; ++a) sim.external_impulse[a] = impulse[a];
+  const auto difference = r.doubles("simulation/grid_momentum_difference", {D});
+  for (int a = 0; a < D; ++a) sim.grid_momentum_difference[a] = difference[a];
   unflat(r.doubles("simulation/initial_velocity", {n, D}), sim.initial_velocity);
   unflat(r.doubles("simulation/initial_position", {n, D}), sim.initial_position);
 
