@@ -6,7 +6,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 packages=(build-essential cmake libeigen3-dev nlohmann-json3-dev libcli11-dev libfmt-dev libhdf5-dev
           libgtest-dev libgmock-dev libbenchmark-dev
-          python3 python3-matplotlib python3-numpy python3-meshio)
+          python3 python3-matplotlib python3-numpy python3-meshio python3-h5py)
 
 bash scripts/install_packages.sh "${packages[@]}"
 
