@@ -178,7 +178,8 @@ class ExplicitStepper {
 
   void update_strain(double dt) {
     update_deformation(s_.particles, dt, s_.solver.deformation_update);
-    const long bad = update_stress<D>(s_.materials, s_.particles);
+    const ArtificialViscosity av{s_.solver.av_linear, s_.solver.av_quadratic, s_.grid.min_cell_size()};
+    const long bad = update_stress<D>(s_.materials, s_.particles, av);
     if (bad >= 0) {
       std::ostringstream what;
       what << "det F = " << s_.particles.F[bad].determinant() << " (needs > 0) or a non-finite stress";
