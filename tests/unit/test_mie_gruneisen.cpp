@@ -1,11 +1,11 @@
 // Mie-Grueneisen nickel (material/mie_gruneisen.hpp) and the artificial viscosity: the
 // Rankine-Hugoniot plateau of Nairn 2026 §3.2.1, the Hugoniot energy jump of a single update, the
 // energy bookkeeping over a loading path, and the viscosity formula.
-#include "matpoint/material/material.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
+
+#include "matpoint/material/material.hpp"
 
 namespace {
 

@@ -1,8 +1,8 @@
 // One-sided face conditions (docs/input.md, boundary_conditions.one_sided): a "fixed" or "slip"
 // face holds only the nodes moving into it and leaves the nodes moving away free.
-#include "matpoint/grid/velocity_conditions.hpp"
-
 #include <gtest/gtest.h>
+
+#include "matpoint/grid/velocity_conditions.hpp"
 
 namespace {
 

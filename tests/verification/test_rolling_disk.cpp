@@ -6,12 +6,12 @@
 //    rolling, a = 2/3 g sin(theta), within 5 % at R / h = 10 and closer than at R / h = 5, where
 //    nodes ahead of the contact are held before the disk reaches them (issue 5; README.md table);
 //  - frictionless face ("slip": the normal component zero): sliding, a = g sin(theta), within 2 %.
-#include "test_support.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
+
+#include "test_support.hpp"
 
 namespace {
 

@@ -11,9 +11,9 @@
 // the Rankine-Hugoniot energy jump e = (p0 + p1)(v0 - v1) / 2 for a single jump.
 #pragma once
 
-#include "matpoint/core/types.hpp"
-
 #include <cmath>
+
+#include "matpoint/core/types.hpp"
 
 namespace matpoint {
 
@@ -45,30 +45,36 @@ struct MieGruneisen {
   }
 
   /// Cauchy stress at F with the artificial viscosity q of this step; advances state = {e, eta}.
-  template <int D> [[nodiscard]] Mat<D> stress(const Mat<D>& F, double q, double* state) const {
+  template <int D>
+  [[nodiscard]] Mat<D> stress(const Mat<D>& F, double q, double* state) const {
     const double J = F.determinant();
     const double eta = 1.0 - J, eta_old = state[1], e_old = state[0];
     const double dv = (eta_old - eta) / density;  // change of specific volume
     const double p_old = pressure(eta_old, e_old);
     const double reference = reference_pressure(eta);
-    const double e = (e_old - 0.5 * (p_old + reference) * dv - q * dv) / (1.0 + 0.5 * gruneisen * density * dv);
+    const double e =
+        (e_old - 0.5 * (p_old + reference) * dv - q * dv) / (1.0 + 0.5 * gruneisen * density * dv);
     state[0] = e;
     state[1] = eta;
     return -(reference + gruneisen * density * e + q) * Mat<D>::Identity() + deviatoric<D>(F, J);
   }
   /// Energy per unit initial volume: rho0 e (volumetric and heat) + G/2 (tr Bbar - 3).
-  template <int D> [[nodiscard]] double energy_density(const Mat<D>& F, const double* state) const {
+  template <int D>
+  [[nodiscard]] double energy_density(const Mat<D>& F, const double* state) const {
     const double J = F.determinant();
-    const double trB3 = (F * F.transpose()).trace() + (3 - D);  // plane strain / uniaxial strain: F = 1 outside
+    const double trB3 =
+        (F * F.transpose()).trace() + (3 - D);  // plane strain / uniaxial strain: F = 1 outside
     return density * state[0] + 0.5 * shear_modulus * (std::pow(J, -2.0 / 3.0) * trB3 - 3.0);
   }
   /// Small-strain dilatational speed sqrt(C0^2 + 4 G / (3 rho0)) (C0^2 = K / rho0).
-  template <int D> [[nodiscard]] double wave_speed() const {
+  template <int D>
+  [[nodiscard]] double wave_speed() const {
     return std::sqrt(bulk_sound_speed * bulk_sound_speed + 4.0 * shear_modulus / (3.0 * density));
   }
 
  private:
-  template <int D> [[nodiscard]] Mat<D> deviatoric(const Mat<D>& F, double J) const {
+  template <int D>
+  [[nodiscard]] Mat<D> deviatoric(const Mat<D>& F, double J) const {
     if (shear_modulus == 0.0) return Mat<D>::Zero();
     const Mat<D> B = F * F.transpose();
     const double trB3 = B.trace() + (3 - D);
