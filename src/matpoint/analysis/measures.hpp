@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 13> kMeasures{{
+inline constexpr std::array<MeasureInfo, 15> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |E(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy"},
     {"max_relative_momentum_error",
@@ -35,6 +35,12 @@ inline constexpr std::array<MeasureInfo, 13> kMeasures{{
     {"vibrating_bar_com_velocity_error",
      "max over output times of |v_cm(t) - v_exact(t)| / v_amp, v_exact = v_amp cos(pi c t / (2 L)), "
      "v_amp = 2 v0 / pi, for the first-mode bar of examples/vibrating-bar-1d"},
+    {"fitted_com_acceleration_x",
+     "least-squares slope of the centre-of-mass x velocity against time over all output times (a body "
+     "under constant acceleration, e.g. examples/rolling-disk)"},
+    {"shock_plateau_stress",
+     "at the end of the run, the median of -sigma_xx over the particles where -sigma_xx is at least half its "
+     "largest value: the plateau behind a compressive shock moving along x (examples/shock-interface)"},
 }};
 
 [[nodiscard]] constexpr bool is_known_measure(std::string_view name) {

@@ -75,13 +75,41 @@ double bar_period_error(const Spec& spec, const History& h) {
   return std::abs(period - exact) / exact;
 }
 
+/// Least-squares slope of v_x(t) = momentum_x / mass through every output.
+double fitted_com_acceleration_x(const History& h) {
+  if (h.samples.size() < 3) return kNaN;
+  double st = 0, sv = 0, stt = 0, stv = 0;
+  for (const auto& s : h.samples) {
+    double mass = 0.0;
+    for (double m : s.body_mass) mass += m;
+    const double v = s.momentum[0] / mass;
+    st += s.time, sv += v, stt += s.time * s.time, stv += s.time * v;
+  }
+  const auto n = static_cast<double>(h.samples.size());
+  return (n * stv - st * sv) / (n * stt - st * st);
+}
+
 }  // namespace
+
+double shock_plateau_stress(std::vector<double> stress_xx) {
+  if (stress_xx.empty()) return kNaN;
+  double largest = 0.0;
+  for (double& s : stress_xx) largest = std::max(largest, s = -s);
+  if (!(largest > 0)) return kNaN;
+  std::erase_if(stress_xx, [&](double s) { return s < 0.5 * largest; });
+  const auto middle = stress_xx.begin() + static_cast<std::ptrdiff_t>(stress_xx.size() / 2);
+  std::nth_element(stress_xx.begin(), middle, stress_xx.end());
+  return *middle;
+}
 
 double vibrating_bar_com_velocity(double v0, double wave_speed, double length, double t) {
   return 2.0 * v0 / std::numbers::pi * std::cos(std::numbers::pi * wave_speed * t / (2.0 * length));
 }
 
-double evaluate_measure(std::string_view name, const Spec& spec, const History& history, double momentum_scale) {
+double evaluate_measure(std::string_view name, const Spec& spec, const History& history, double momentum_scale,
+                        const FinalState* final_state) {
+  if (name == "fitted_com_acceleration_x") return fitted_com_acceleration_x(history);
+  if (name == "shock_plateau_stress") return final_state ? shock_plateau_stress(final_state->stress_xx) : kNaN;
   if (name == "max_relative_energy_error") return max_relative_energy_error(history);
   if (name == "max_relative_momentum_error") return max_relative_momentum_error(history, momentum_scale);
   if (name == "min_jacobian") {

@@ -5,12 +5,22 @@
 #include "matpoint/io/spec.hpp"
 
 #include <string_view>
+#include <vector>
 
 namespace matpoint {
 
-/// The measured value, or NaN when the run does not allow it (e.g. too few zero crossings).
-/// `momentum_scale` is sum_p M_p |V_p(0)|.
-double evaluate_measure(std::string_view name, const Spec& spec, const History& history, double momentum_scale);
+/// What the measures of the final state need from the particles at the end of a run.
+struct FinalState {
+  std::vector<double> stress_xx;  // sigma_xx of every particle
+};
+
+/// The measured value, or NaN when the run does not allow it (e.g. too few zero crossings, or a
+/// final-state measure without `final_state`). `momentum_scale` is sum_p M_p |V_p(0)|.
+double evaluate_measure(std::string_view name, const Spec& spec, const History& history, double momentum_scale,
+                        const FinalState* final_state = nullptr);
+
+/// Median of -sigma_xx over the values with -sigma_xx >= half the largest (measure shock_plateau_stress).
+double shock_plateau_stress(std::vector<double> stress_xx);
 
 /// Centre-of-mass velocity of a 1-D bar of length L fixed at x = 0 and free at x = L, started in
 /// its first mode V(x, 0) = v0 sin(pi x / (2 L)): v_cm(t) = 2 v0 / pi cos(pi c t / (2 L)).

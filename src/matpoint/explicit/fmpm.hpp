@@ -50,7 +50,7 @@ class FmpmLoop {
     const int order =
         spec_.recursion == FmpmRecursion::Binomial
             ? run_binomial(grid, stencils, particles, mass, mass_floor, v, ws)
-            : run_incremental(grid, stencils, particles, mass, mass_floor, conditions, v, ws, impulse);
+            : run_incremental(grid, stencils, particles, mass, mass_floor, conditions, t, v, ws, impulse, work);
     if (spec_.boundary_method == FmpmBoundaryMethod::Combined || spec_.recursion == FmpmRecursion::Binomial) {
       double ignored_work = 0.0;  // Nairn 2026 §3.1 "combined": overwrite v+(k) on the condition nodes
       conditions.apply(v, t, impulse ? &mass : nullptr, impulse, work ? work : &ignored_work);
@@ -92,8 +92,8 @@ class FmpmLoop {
   template <class Stencils>
   int run_incremental(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
                       const std::vector<double>& mass, double mass_floor,
-                      const VelocityConditions<D>& conditions, std::vector<Vec<D>>& v,
-                      ScatterWorkspace<D>& ws, Vec<D>* impulse) {
+                      const VelocityConditions<D>& conditions, double t, std::vector<Vec<D>>& v,
+                      ScatterWorkspace<D>& ws, Vec<D>* impulse, double* work) {
     prev_ = v;  // dv(1) = v+(1); v holds the running sum v* = v+(l)
     const auto nodes = static_cast<std::ptrdiff_t>(v.size());
     for (int l = 2; l <= spec_.order; ++l) {
@@ -102,7 +102,7 @@ class FmpmLoop {
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) prev_[i] = scale * (prev_[i] - next_[i]);  // A dv(l-1)
       if (spec_.boundary_method == FmpmBoundaryMethod::Incremental)
-        conditions.zero_constrained(prev_, &mass, impulse);  // (1)
+        conditions.zero_constrained(prev_, &mass, impulse, work, t);  // (1), with the walls' work
         // (2): contact corrections of each increment plug in here (multimaterial contact issue).
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) v[i] += prev_[i];

@@ -43,9 +43,11 @@ VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpe
           }
         break;
     }
+    const int approach = c.one_sided ? (c.face_side == 0 ? -1 : 1) : 0;
+    one_sided_ = one_sided_ || c.one_sided;
     for (Index node = 0; node < grid.node_count; ++node)
       if (node_selected(c, grid, node))
-        for (auto [axis, function] : axis_function) entries_.push_back({node, axis, function});
+        for (auto [axis, function] : axis_function) entries_.push_back({node, axis, function, c.face_axis, approach});
   }
 }
 
@@ -74,7 +76,12 @@ void VelocityConditions<D>::apply(std::vector<Vec<D>>& v, double t, const std::v
                                   Vec<D>* impulse, double* work) const {
   std::vector<double> value(functions_.size());
   for (std::size_t f = 0; f < functions_.size(); ++f) value[f] = functions_[f](t);
-  for (const auto& e : entries_) {
+  std::vector<char> held;  // one-sided faces: decided on the velocities before any is changed
+  if (one_sided_)
+    for (const auto& e : entries_) held.push_back(static_cast<char>(holds(e, v)));
+  for (std::size_t k = 0; k < entries_.size(); ++k) {
+    const auto& e = entries_[k];
+    if (one_sided_ && !held[k]) continue;
     const double set = e.function < 0 ? 0.0 : value[e.function];
     if (mass && impulse && work) {
       const double dp = (*mass)[e.node] * (set - v[e.node][e.axis]);

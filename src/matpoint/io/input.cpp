@@ -152,8 +152,9 @@ std::string_view name_of(const std::array<Named<T>, N>& options, T value) {
   return "?";
 }
 
-constexpr std::array<Named<MaterialModel>, 2> kModels{
-    {{"linear_elastic", MaterialModel::LinearElastic}, {"neo_hookean", MaterialModel::NeoHookean}}};
+constexpr std::array<Named<MaterialModel>, 3> kModels{{{"linear_elastic", MaterialModel::LinearElastic},
+                                                      {"neo_hookean", MaterialModel::NeoHookean},
+                                                      {"mie_gruneisen", MaterialModel::MieGruneisen}}};
 constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
     {{"log_j", NeoHookeanVolumetric::LogJ}, {"half_j_squared", NeoHookeanVolumetric::HalfJSquared}}};
 constexpr std::array<Named<BodyShape>, 3> kShapes{
@@ -521,7 +522,9 @@ class SpecReader {
     read_solver(
         Object(top.required("solver"),
                {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape", "mapping",
-                "mls", "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance"}));
+                "mls", "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance",
+                "artificial_viscosity"}));
+    check_one_sided_transfer(top.optional("boundary_conditions"));
     read_output(Object(top.optional("output"),
                        {"every_steps", "every_time", "particles", "plots", "fields", "checkpoint"}));
     read_checks(top.optional("checks"));
@@ -603,7 +606,8 @@ class SpecReader {
   }
 
   MaterialSpec read_material(const Value& v) {
-    const Object m(v, {"name", "model", "density", "E", "nu", "lambda", "mu", "volumetric"});
+    const Object m(v, {"name", "model", "density", "E", "nu", "lambda", "mu", "volumetric", "bulk_sound_speed",
+                       "hugoniot_slope", "gruneisen", "shear_modulus"});
     MaterialSpec out;
     if (!m.valid()) {
       names_complete_ = false;
@@ -613,12 +617,28 @@ class SpecReader {
     const auto model = m.required("model").choice(kModels);
     set_if(out.model, model);
     set_if(out.density, m.required("density").number(kPositive));
+    if (model == MaterialModel::MieGruneisen) return read_mie_gruneisen(m, out);
+    for (const char* key : {"bulk_sound_speed", "hugoniot_slope", "gruneisen", "shear_modulus"})
+      if (m.has(key)) m.optional(key).fail(std::string("no \"") + key + "\" unless model is \"mie_gruneisen\"");
     read_elasticity(m, out);
     const Value volumetric = m.optional("volumetric");
     if (model == MaterialModel::LinearElastic && volumetric.present())
       volumetric.fail("no \"volumetric\" key for a linear_elastic material (only neo_hookean has one)");
     else
       set_if(out.volumetric, volumetric.choice(kVolumetric));
+    return out;
+  }
+
+  /// model "mie_gruneisen" (material/mie_gruneisen.hpp): C0, S, Gamma0 and an optional shear modulus.
+  static MaterialSpec read_mie_gruneisen(const Object& m, MaterialSpec& out) {
+    for (const char* key : {"E", "nu", "lambda", "mu", "volumetric"})
+      if (m.has(key)) m.optional(key).fail(std::string("no \"") + key + "\" for a mie_gruneisen material");
+    set_if(out.bulk_sound_speed, m.required("bulk_sound_speed").number(kPositive));
+    set_if(out.hugoniot_slope, m.required("hugoniot_slope").number(kNonNegative));
+    set_if(out.gruneisen, m.required("gruneisen").number(kNonNegative));
+    set_if(out.mu, m.optional("shear_modulus").number(kNonNegative));
+    // lambda + 2 mu / 3 = K = rho0 C0^2, so that lambda + 2 mu is the dilatational modulus
+    out.lambda = out.density * out.bulk_sound_speed * out.bulk_sound_speed - 2.0 * out.mu / 3.0;
     return out;
   }
 
@@ -857,7 +877,7 @@ class SpecReader {
             Object(item, {"type", "axis", "position", "material", "velocity", "depth", "stretch_about"})));
       else
         spec_.conditions.push_back(
-            read_condition(Object(item, {"face", "box", "type", "normal", "velocity"})));
+            read_condition(Object(item, {"face", "box", "type", "normal", "velocity", "one_sided"})));
     }
   }
 
@@ -899,7 +919,29 @@ class SpecReader {
     } else if (velocity.present()) {
       velocity.fail("no velocity unless type is \"velocity\"");
     }
+    read_one_sided(c.optional("one_sided"), out);
     return out;
+  }
+
+  /// "one_sided": true on a fixed or slip face (slip with the face's own normal), not with FMPM/XPIC.
+  void read_one_sided(const Value& v, VelocityConditionSpec& out) const {
+    const auto one_sided = v.boolean();
+    if (!one_sided || !*one_sided) return;
+    const bool face_normal = out.kind == ConditionKind::Fixed || out.normal_axis == out.face_axis;
+    if (!out.on_face || out.kind == ConditionKind::Velocity || !face_normal)
+      v.fail("one_sided only on a \"fixed\" face or a \"slip\" face with the face's normal");
+    else
+      out.one_sided = true;
+  }
+
+  /// One-sided conditions decide per step which nodes they hold; the FMPM/XPIC increments would need
+  /// that choice cached, so they are refused there.
+  void check_one_sided_transfer(const Value& list) const {
+    const auto t = spec_.solver.transfer;
+    if (t != VelocityTransfer::FMPM && t != VelocityTransfer::XPIC) return;
+    for (std::size_t i = 0; i < spec_.conditions.size(); ++i)
+      if (spec_.conditions[i].one_sided)
+        list.element(i).member("one_sided", false).fail("false (one_sided conditions need transfer flip, pic or blend)");
   }
 
   /// Exactly one of "face" and "box".
@@ -1047,6 +1089,14 @@ class SpecReader {
     set_if(out.end_time, s.required("end_time").number(kPositive));
     set_if(out.max_steps, s.optional("max_steps").integer(0));
     set_if(out.mass_tolerance, s.optional("mass_tolerance").number({0, 1, false, true}));
+    read_artificial_viscosity(Object(s.optional("artificial_viscosity"), {"linear", "quadratic"}), out);
+  }
+
+  /// solver.artificial_viscosity: {"linear": A1, "quadratic": A2}, NairnMPM's defaults 0.2 and 2.0.
+  static void read_artificial_viscosity(const Object& a, SolverSpec& out) {
+    if (!a.valid()) return;
+    out.av_linear = a.optional("linear").number(kNonNegative).value_or(0.2);
+    out.av_quadratic = a.optional("quadratic").number(kNonNegative).value_or(2.0);
   }
 
   /// solver.mapping and solver.mls: Gong 2015's IMPM (§5.4) and MLS velocity mapping (§6.6).

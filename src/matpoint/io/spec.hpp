@@ -18,7 +18,7 @@ enum class VelocityTransfer { FLIP, PIC, Blend, FMPM, XPIC };   // particle velo
 // Grid basis (docs/input.md#solver): point bases, GIMP family, CPDI family.
 enum class ShapeKind { Linear, BSpline2, BSpline3, UGIMP, CpGIMP, CPDI1, CPDI2, B2GIMP, B2CPDI };
 enum class DeformationUpdate { Exponential, Linear };      // dF = exp(L dt) or I + L dt
-enum class MaterialModel { LinearElastic, NeoHookean };
+enum class MaterialModel { LinearElastic, NeoHookean, MieGruneisen };
 enum class NeoHookeanVolumetric { LogJ, HalfJSquared };    // lambda lnJ/J  or  lambda/2 (J - 1/J)
 
 struct GridSpec {
@@ -35,6 +35,8 @@ struct MaterialSpec {
   double youngs_modulus = 0, poisson_ratio = 0;  // always filled (converted when lambda/mu are given)
   double lambda = 0, mu = 0;                     // always filled
   NeoHookeanVolumetric volumetric = NeoHookeanVolumetric::LogJ;
+  // mie_gruneisen (material/mie_gruneisen.hpp): U_s = C0 + S u_p, Gamma0; mu is its shear modulus
+  double bulk_sound_speed = 0, hugoniot_slope = 0, gruneisen = 0;
 };
 
 enum class BodyShape { Box, Disk, Polygon };
@@ -81,6 +83,9 @@ struct VelocityConditionSpec {
   Triple box_min{}, box_max{};
   ConditionKind kind = ConditionKind::Fixed;
   int normal_axis = 0;  // Slip: the constrained (normal) axis; a face's own axis by default
+  // Fixed / Slip on a face: act only on nodes moving into the face (v . outward normal > 0) and
+  // leave the others free, so a body can roll off or lift off (examples/rolling-disk).
+  bool one_sided = false;
   std::array<std::optional<TimeFunction>, 3> velocity;  // Velocity: prescribed components, empty = free
   // MovingWall (Nairn 2026 §3.1): a plane x_axis = position + integral of wall_velocity that sets
   // the axis velocity of the nodes with mass on its far side and of those within `depth` inside
@@ -145,6 +150,8 @@ struct SolverSpec {
   // Gong 2015 extraction A24: the velocity conditions also hold on the old node velocities, so the
   // FLIP increment carries no boundary reaction (built-in verification problems only; not an input key).
   bool constrain_old_velocity = false;
+  // Artificial bulk viscosity coefficients A1 (linear), A2 (quadratic); zero: off.
+  double av_linear = 0.0, av_quadratic = 0.0;
 };
 
 /// output.checkpoint: when a run writes DIR/checkpoint.h5 (docs/output.md "Checkpoints and restart").

@@ -1,6 +1,7 @@
 #include "matpoint/material/material.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 namespace matpoint {
 
@@ -8,27 +9,50 @@ Material make_material(const MaterialSpec& spec) {
   switch (spec.model) {
     case MaterialModel::NeoHookean:
       return NeoHookean{spec.density, spec.lambda, spec.mu, spec.volumetric};
+    case MaterialModel::MieGruneisen:
+      return MieGruneisen{spec.density, spec.bulk_sound_speed, spec.hugoniot_slope, spec.gruneisen, spec.mu};
     case MaterialModel::LinearElastic:
       break;
   }
   return LinearElastic{spec.density, spec.youngs_modulus, spec.lambda, spec.mu};
 }
 
-template <int D> long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles) {
+int state_size(const Material& m) {
+  return std::visit(
+      [](const auto& model) {
+        if constexpr (requires { std::decay_t<decltype(model)>::state_size; })
+          return std::decay_t<decltype(model)>::state_size;
+        return 0;
+      },
+      m);
+}
+
+template <int D>
+long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles, const ArtificialViscosity& av) {
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
+  const auto stride = static_cast<std::ptrdiff_t>(particles.state_stride);
   long first_bad = -1;
   for (std::size_t m = 0; m < materials.size(); ++m) {
     std::visit(
         [&](const auto& model) {
+          using Model = std::decay_t<decltype(model)>;
+          const double c = model.template wave_speed<D>();
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : first_bad)
           for (std::ptrdiff_t p = 0; p < n; ++p) {
             if (particles.material[p] != static_cast<int>(m)) continue;
             const Mat<D>& F = particles.F[p];
-            if (!(F.determinant() > 0.0)) {
+            const double J = F.determinant();
+            if (!(J > 0.0)) {
               first_bad = std::max(first_bad, static_cast<long>(n - p));  // max of (n - p) = min p
               continue;
             }
-            particles.stress[p] = model.template stress<D>(F);
+            const double q = av.active() ? av.pressure(particles.mass[p] / (particles.volume0[p] * J),
+                                                       particles.L[p].trace(), c)
+                                         : 0.0;
+            if constexpr (requires { Model::state_size; })
+              particles.stress[p] = model.template stress<D>(F, q, &particles.state[p * stride]);
+            else
+              particles.stress[p] = model.template stress<D>(F) - q * Mat<D>::Identity();
             if (!particles.stress[p].allFinite()) first_bad = std::max(first_bad, static_cast<long>(n - p));
           }
         },
@@ -39,6 +63,7 @@ template <int D> long update_stress(const std::vector<Material>& materials, Part
 
 template <int D>
 double strain_energy(const std::vector<Material>& materials, const ParticleSet<D>& particles, int body) {
+  const auto stride = static_cast<std::ptrdiff_t>(particles.state_stride);
   double energy = 0.0;
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
   for (std::size_t m = 0; m < materials.size(); ++m) {
@@ -47,7 +72,11 @@ double strain_energy(const std::vector<Material>& materials, const ParticleSet<D
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(+ : energy)
           for (std::ptrdiff_t p = 0; p < n; ++p) {
             if (particles.material[p] != static_cast<int>(m) || (body >= 0 && particles.body[p] != body)) continue;
-            energy += particles.volume0[p] * model.template energy_density<D>(particles.F[p]);
+            if constexpr (requires { std::decay_t<decltype(model)>::state_size; })
+              energy += particles.volume0[p] *
+                        model.template energy_density<D>(particles.F[p], &particles.state[p * stride]);
+            else
+              energy += particles.volume0[p] * model.template energy_density<D>(particles.F[p]);
           }
         },
         materials[m]);
@@ -55,9 +84,9 @@ double strain_energy(const std::vector<Material>& materials, const ParticleSet<D
   return energy;
 }
 
-template long update_stress<1>(const std::vector<Material>&, ParticleSet<1>&);
-template long update_stress<2>(const std::vector<Material>&, ParticleSet<2>&);
-template long update_stress<3>(const std::vector<Material>&, ParticleSet<3>&);
+template long update_stress<1>(const std::vector<Material>&, ParticleSet<1>&, const ArtificialViscosity&);
+template long update_stress<2>(const std::vector<Material>&, ParticleSet<2>&, const ArtificialViscosity&);
+template long update_stress<3>(const std::vector<Material>&, ParticleSet<3>&, const ArtificialViscosity&);
 template double strain_energy<1>(const std::vector<Material>&, const ParticleSet<1>&, int);
 template double strain_energy<2>(const std::vector<Material>&, const ParticleSet<2>&, int);
 template double strain_energy<3>(const std::vector<Material>&, const ParticleSet<3>&, int);

@@ -1,10 +1,13 @@
 // The material models a simulation can use, and the batched stress update over particles.
 // Adding a model: a struct with stress<D>, energy_density<D>, wave_speed<D> in this folder, one
-// alternative in Material, one case in make_material.
+// alternative in Material, one case in make_material. A model with history declares
+// `state_size` and takes its state (stress<D>(F, q, state), energy_density<D>(F, state)).
 #pragma once
 
 #include "matpoint/io/spec.hpp"
+#include "matpoint/material/artificial_viscosity.hpp"
 #include "matpoint/material/linear_elastic.hpp"
+#include "matpoint/material/mie_gruneisen.hpp"
 #include "matpoint/material/neo_hookean.hpp"
 #include "matpoint/particles/particle_set.hpp"
 
@@ -13,17 +16,23 @@
 
 namespace matpoint {
 
-using Material = std::variant<LinearElastic, NeoHookean>;
+using Material = std::variant<LinearElastic, NeoHookean, MieGruneisen>;
 
 Material make_material(const MaterialSpec& spec);
+
+/// History values per particle a model needs (0 for the elastic models).
+int state_size(const Material& m);
 
 template <int D> double wave_speed(const Material& m) {
   return std::visit([](const auto& model) { return model.template wave_speed<D>(); }, m);
 }
 
-/// sigma_p = sigma(F_p) for every particle. The model is chosen once per material, not per
-/// particle. Returns the index of the first particle with det F <= 0 or a non-finite stress, or -1.
-template <int D> long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles);
+/// sigma_p = sigma(F_p) - q_p I for every particle (q_p: artificial viscosity from L_p, zero when
+/// `av` is inactive). The model is chosen once per material, not per particle. Returns the index of
+/// the first particle with det F <= 0 or a non-finite stress, or -1.
+template <int D>
+long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles,
+                   const ArtificialViscosity& av = {});
 
 /// Sum over particles of V0_p W(F_p).
 template <int D> double strain_energy(const std::vector<Material>& materials, const ParticleSet<D>& particles,
