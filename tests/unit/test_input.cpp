@@ -1,5 +1,6 @@
 // Tests of the JSON input reader (src/matpoint/io/input.cpp, format in docs/input.md).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -475,7 +476,8 @@ TEST(InputReader, MissingFileIsAnIssueNamingTheFile) {
 }
 
 TEST(InputReader, LoadsAFile) {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "matpoint_test_input.json";
+  const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                     ("matpoint_test_input_" + std::to_string(::getpid()) + ".json");
   std::ofstream(file) << "// minimal\n" << minimal_input().dump(2);
   EXPECT_EQ(load_spec(file).grid.cells[0], 4);
   std::filesystem::remove(file);

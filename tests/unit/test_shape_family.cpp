@@ -2,6 +2,14 @@
 // U8; Nairn 2026 §2.1): cubic B-spline, uGIMP, cpGIMP, B2GIMP, CPDI1, CPDI2, B2CPDI in 1-D, 2-D
 // and 3-D. Every check includes particles in the cells next to the grid edge, whose stencils or
 // domains reach past it (folded, shape/kernels.hpp), and one particle exactly on the grid corner.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/explicit/simulation.hpp"
@@ -11,14 +19,6 @@
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 #include "test_support.hpp"
-
-#include <gtest/gtest.h>
-
-#include <filesystem>
-#include <fstream>
-#include <map>
-#include <random>
-#include <sstream>
 
 namespace {
 
@@ -642,7 +642,7 @@ TEST(ShapeFamily, DomainBasesWriteTheirDomainsForParaView) {
     spec.solver.end_time = 0.002;
     spec.output.plots = false;
     RunOptions options;
-    options.out_dir = std::filesystem::temp_directory_path() / (std::string("matpoint_test_domains_") + name);
+    options.out_dir = matpoint::test::scratch_folder(std::string("domains_") + name);
     std::filesystem::remove_all(options.out_dir);
     options.progress = false;
     const auto result = run_explicit(spec, options);
@@ -661,6 +661,7 @@ TEST(ShapeFamily, DomainBasesWriteTheirDomainsForParaView) {
         "NumberOfPoints=\"" + std::to_string(8 * result.summary["particles"].get<long>()) +
         "\" NumberOfCells=\"" + std::to_string(result.summary["particles"].get<long>()) + "\"";
     EXPECT_NE(text.str().find(expected), std::string::npos);
+    std::filesystem::remove_all(options.out_dir);
   }
 }
 
