@@ -43,6 +43,10 @@ template <int D> class VelocityConditions {
 
   [[nodiscard]] bool has_walls() const { return !walls_.empty(); }
 
+  /// Multi-field (contact) runs: every condition holds on each of `fields` copies of the grid's
+  /// N nodes (field f at flat indices f N .. f N + N - 1), walls included.
+  void replicate(int fields);
+
   [[nodiscard]] std::size_t size() const { return entries_.size() + wall_entries_.size(); }
 
  private:
@@ -56,11 +60,14 @@ template <int D> class VelocityConditions {
     int axis;
     double value;
   };
+  void select_field_wall_nodes(double t, const std::vector<double>& mass, double mass_floor, Index offset);
+
   std::vector<Entry> entries_;
   std::vector<TimeFunction> functions_;
   std::vector<VelocityConditionSpec> walls_;
   std::vector<WallEntry> wall_entries_;  // this step's wall nodes
   Grid<D> grid_;
+  int fields_ = 1;
 };
 
 }  // namespace matpoint

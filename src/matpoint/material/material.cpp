@@ -8,6 +8,8 @@ Material make_material(const MaterialSpec& spec) {
   switch (spec.model) {
     case MaterialModel::NeoHookean:
       return NeoHookean{spec.density, spec.lambda, spec.mu, spec.volumetric};
+    case MaterialModel::Rigid:
+      return Rigid{spec.density};
     case MaterialModel::LinearElastic:
       break;
   }

@@ -6,6 +6,7 @@
 #include "matpoint/io/spec.hpp"
 #include "matpoint/material/linear_elastic.hpp"
 #include "matpoint/material/neo_hookean.hpp"
+#include "matpoint/material/rigid.hpp"
 #include "matpoint/particles/particle_set.hpp"
 
 #include <variant>
@@ -13,7 +14,7 @@
 
 namespace matpoint {
 
-using Material = std::variant<LinearElastic, NeoHookean>;
+using Material = std::variant<LinearElastic, NeoHookean, Rigid>;
 
 Material make_material(const MaterialSpec& spec);
 
