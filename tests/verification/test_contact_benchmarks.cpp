@@ -1,9 +1,12 @@
 // Issue 5 verification items 2 and 3 (cheap versions; full resolution in the example READMEs).
 // 2. examples/incline-friction: a block on a rigid incline (theta = 30 deg). Sliding: the centre
 //    of mass follows 1/2 g (sin theta - mu cos theta) t^2 within 2 % in the second half of the run
-//    (the issue's bound); mu = 0 is the frictionless slide 1/2 g sin theta t^2; mu = 0.7 > tan 30
-//    = 0.577 sticks: it moves less than 1 % of the frictionless slide. (The shipped mu = 0.3 input
-//    runs in test_examples.)
+//    (the issue's bound); mu = 0 is the frictionless slide 1/2 g sin theta t^2; mu = 0.6 > tan 30
+//    = 0.577 sticks: after settling it moves less than 1 % of the frictionless slide. Gravity is
+//    switched on at t = 0 on an unstressed, undamped elastic block, so the normal force
+//    oscillates between about 0 and twice its mean; a static-friction test needs that vibration
+//    damped: the stick cases run PIC (lumped FMPM(1)), whose dissipation removes it (README.md
+//    shows FLIP creeping at mu = 0.7). (The shipped mu = 0.3 input runs in test_examples.)
 // 3. examples/two-disks-contact at the CI cell (1 mm, 20 cells per diameter): FLIP loses less
 //    than 2.5 % of kinetic + strain + friction energy (Nairn 2026 Fig. 9A: < 2 % at 1/3 mm; the
 //    issue allows 2.5 %); the loss falls with k (FMPM(1) > FMPM(2) > FMPM(4), Fig. 9B); and the
@@ -24,17 +27,23 @@ namespace {
 using namespace matpoint;
 using namespace matpoint::test;
 
-double sliding_error(double mu) {
+double sliding_error(double mu, VelocityTransfer transfer, double end_time) {
   Spec spec = load_example("incline-friction");
   spec.contact.law = mu > 0 ? ContactLawSpec{ContactLaw::Coulomb, mu} : ContactLawSpec{ContactLaw::Frictionless, 0};
+  spec.solver.transfer = transfer;
+  spec.solver.end_time = end_time;
   const auto result = run_quietly(spec, "incline_" + std::to_string(mu));
   EXPECT_EQ(result.exit_code, 0) << result.message;
   return evaluate_measure("sliding_block_displacement_error", spec, result.history, 0.0);
 }
 
-TEST(InclineFriction, FrictionlessSlidesAtGSinTheta) { EXPECT_LT(sliding_error(0.0), 0.02); }
+TEST(InclineFriction, FrictionlessSlidesAtGSinTheta) {
+  EXPECT_LT(sliding_error(0.0, VelocityTransfer::FLIP, 0.4), 0.02);  // 0.4 s: the block stays on the grid
+}
 
-TEST(InclineFriction, StaysPutWhenMuExceedsTanTheta) { EXPECT_LT(sliding_error(0.7), 0.01); }
+TEST(InclineFriction, StaysPutWhenMuExceedsTanTheta) {
+  EXPECT_LT(sliding_error(0.6, VelocityTransfer::PIC, 0.6), 0.01);
+}
 
 struct DiskRun {
   double loss;

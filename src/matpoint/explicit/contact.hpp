@@ -101,10 +101,10 @@ class MultiFieldContact {
       e.prior = spec_.fmpm_method == ContactFmpmMethod::Net ? dp0 : Vec<D>(dp0 - dp);
       e.net = dp;
     }
-    for (const auto& e : entries_) {
-      if (friction_work && e.law.law == ContactLaw::Coulomb) *friction_work += tangential_loss(e, mass, velocity);
-      apply(e, e.applied, mass, x, momentum);
-    }
+    for (const auto& e : entries_) apply(e, e.applied, mass, x, momentum);
+    if (friction_work)
+      for (const auto& e : entries_)
+        if (e.law.law == ContactLaw::Coulomb) *friction_work += slip_work(e, mass, velocity);
   }
 
   /// FMPM loop line (2) on the increment dv(l) of every field: rigid fields get no increment, and
@@ -164,8 +164,8 @@ class MultiFieldContact {
     }
   }
 
-  /// Normal from a to b: minus a's gradient, plus b's ("average", volume gradients), or the
-  /// mass gradient of one field: the rigid one, else the heavier one (a itself for Rest).
+  /// Normal from a to b: a's outward normal minus b's ("average", volume gradients), or the
+  /// outward mass-gradient normal of one field: the rigid one, else the heavier one (a for Rest).
   void set_normal(Entry& e, const std::vector<double>& mass) {
     const Index ia = at(e.a, e.node);
     Vec<D> other = Vec<D>::Zero(), other_position = Vec<D>::Zero();
@@ -177,13 +177,14 @@ class MultiFieldContact {
       other_mass += mass[ig];
       if (!position_.empty()) other_position += position_[ig];
     }
+    // gradient_ holds sum_p w_p grad S_pi = -grad m(x_i): the outward normal of each field.
     Vec<D> n;
     if (spec_.normals == ContactNormals::Average)
-      n = other - gradient_[ia];
+      n = gradient_[ia] - other;
     else if (e.kind == Kind::Rigid || (e.kind == Kind::Pair && mass[at(e.b, e.node)] > mass[ia]))
-      n = other;
+      n = -other;
     else
-      n = -gradient_[ia];
+      n = gradient_[ia];
     const double length = n.norm();
     e.touching = length > 0.0;
     if (!e.touching) return;
@@ -236,18 +237,21 @@ class MultiFieldContact {
     x[ib] -= momentum ? dp : Vec<D>(dp / mass[ib]);
   }
 
-  /// Kinetic energy removed by the tangential part dp_t of the change: for each field f that
-  /// receives +-dp_t, -(+-dp_t . v_f + |dp_t|^2 / (2 m_f)) (exact for the lumped node values).
+  /// Friction work of one step at a node: the tangential change dp_t (the friction impulse,
+  /// +dp_t on a) times the relative tangential velocity left after the correction (the slip
+  /// rate), dp_t . (v_b - v_a)_after >= 0; zero where the law sticks (Nairn, Bardenhagen & Smith
+  /// 2018: frictional heating = friction force x slip).
   template <class Velocity>
-  [[nodiscard]] double tangential_loss(const Entry& e, const std::vector<double>& mass, const Velocity& v) const {
+  [[nodiscard]] double slip_work(const Entry& e, const std::vector<double>& mass, const Velocity& v) const {
+    if (!e.touching) return 0.0;
     const Vec<D> dp_t = e.applied - e.applied.dot(e.normal) * e.normal;
     const Index ia = at(e.a, e.node);
-    double loss = -(dp_t.dot(v(ia)) + 0.5 * dp_t.squaredNorm() / mass[ia]);
+    double m_eff = mass[ia];  // change_to_common = m_eff (v_b - v_a)
     if (e.kind == Kind::Pair) {
-      const Index ib = at(e.b, e.node);
-      loss -= -dp_t.dot(v(ib)) + 0.5 * dp_t.squaredNorm() / mass[ib];
+      const double mb = mass[at(e.b, e.node)];
+      m_eff = mass[ia] * mb / (mass[ia] + mb);
     }
-    return loss;
+    return std::max(0.0, dp_t.dot(change_to_common(e, mass, v)) / m_eff);
   }
 
   ContactSpec spec_;
