@@ -1,18 +1,18 @@
 // The matpoint command line: run, check, plot (DESIGN.md "Interfaces").
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
 #include "dispersion_command.hpp"
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/version.hpp"
 #include "matpoint/explicit/courant_limits.hpp"
 #include "matpoint/explicit/runner.hpp"
+#include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/input.hpp"
 #include "stability_scan_command.hpp"
 #include "verify_command.hpp"
-
-#include <CLI/CLI.hpp>
-
-#include <cstdio>
-#include <filesystem>
-#include <iostream>
 
 #ifndef MATPOINT_SCRIPTS_DIR
 #define MATPOINT_SCRIPTS_DIR ""
@@ -31,6 +31,7 @@ int report_input_error(const InputError& error) {
 int command_check(const std::string& input) {
   try {
     const Spec spec = load_spec(input);
+    check_setup(spec);  // what only the set-up finds: empty or overlapping bodies
     std::printf("%s: valid (%d-D, %zu material(s), %zu body(ies))\n", input.c_str(), spec.grid.dim,
                 spec.materials.size(), spec.bodies.size());
     return kExitOk;
@@ -51,8 +52,8 @@ int command_run(const std::string& input, const RunOptions& options) {
   try {
     const RunResult result = run_explicit(spec, options);
     if (result.exit_code != kExitOk) {
-      std::fprintf(stderr, "error: %s\nthe last good output and summary.json are in %s\n", result.message.c_str(),
-                   options.out_dir.c_str());
+      std::fprintf(stderr, "error: %s\nthe last good output and summary.json are in %s\n",
+                   result.message.c_str(), options.out_dir.c_str());
       return result.exit_code;
     }
     const auto& s = result.summary;
@@ -61,8 +62,8 @@ int command_run(const std::string& input, const RunOptions& options) {
                 s["particle_steps_per_second"].get<double>(), options.out_dir.c_str());
     for (const auto& c : s["checks"])
       std::printf("  check %-40s %s  measured %s expected %g +/- %g\n", c["name"].get<std::string>().c_str(),
-                  c["pass"].get<bool>() ? "PASS" : "FAIL", c["measured"].dump().c_str(), c["expected"].get<double>(),
-                  c["tolerance"].get<double>());
+                  c["pass"].get<bool>() ? "PASS" : "FAIL", c["measured"].dump().c_str(),
+                  c["expected"].get<double>(), c["tolerance"].get<double>());
     return kExitOk;
   } catch (const InputError& error) {
     return report_input_error(error);
@@ -87,7 +88,8 @@ int main(int argc, char** argv) {
   run->add_option("--threads", options.threads, "OpenMP threads (0: default)")->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet", quiet, "no progress output");
 
-  auto* check = app.add_subcommand("check", "validate an input file; exit 0, or print every problem and exit 2");
+  auto* check =
+      app.add_subcommand("check", "validate an input file; exit 0, or print every problem and exit 2");
   check->add_option("input", input, "input file")->required();
 
   std::string plot_dir;

@@ -1,13 +1,51 @@
 #include "matpoint/explicit/simulation.hpp"
 
+#include <algorithm>
+#include <limits>
+#include <string>
+
 #include "matpoint/core/errors.hpp"
 #include "matpoint/particles/generators.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 
-#include <algorithm>
-#include <string>
-
 namespace matpoint {
+
+namespace {
+
+/// Bodies must not share material: a particle centre of body b inside the shape of an earlier body a
+/// would put the overlap's mass in the grid twice. One issue per overlapping pair (path of body b).
+template <int D>
+std::vector<InputIssue> overlapping_bodies(const Spec& spec, const ParticleSet<D>& particles,
+                                           const Vec<D>& cell) {
+  const std::size_t n = spec.bodies.size();
+  std::vector<Vec<D>> lo(n, Vec<D>::Constant(std::numeric_limits<double>::infinity()));
+  std::vector<Vec<D>> hi(n, Vec<D>::Constant(-std::numeric_limits<double>::infinity()));
+  for (std::size_t p = 0; p < particles.size(); ++p) {  // particle boxes grown by a cell bound the shapes
+    const auto b = static_cast<std::size_t>(particles.body[p]);
+    lo[b] = lo[b].cwiseMin(particles.x[p] - cell);
+    hi[b] = hi[b].cwiseMax(particles.x[p] + cell);
+  }
+  std::vector<std::size_t> count(n * n, 0);  // count[b * n + a]: centres of b inside a, a < b
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const auto b = static_cast<std::size_t>(particles.body[p]);
+    const Vec<D>& x = particles.x[p];
+    for (std::size_t a = 0; a < b; ++a)
+      if ((x.array() >= lo[a].array()).all() && (x.array() <= hi[a].array()).all() &&
+          shape_contains<D>(spec.bodies[a], x))
+        ++count[b * n + a];
+  }
+  std::vector<InputIssue> issues;
+  for (std::size_t b = 0; b < n; ++b)
+    for (std::size_t a = 0; a < b; ++a)
+      if (count[b * n + a] > 0)
+        issues.push_back({"bodies[" + std::to_string(b) + "].shape",
+                          std::to_string(count[b * n + a]) + " particle centre(s) inside bodies[" +
+                              std::to_string(a) + "] (\"" + spec.bodies[a].name + "\")",
+                          "bodies that do not overlap (the overlap's mass would count twice)"});
+  return issues;
+}
+
+}  // namespace
 
 int ghost_layers(ShapeKind shape) {
   switch (shape) {
@@ -20,22 +58,6 @@ int ghost_layers(ShapeKind shape) {
 }
 
 namespace {
-
-/// Fewest cells per direction for which a basis's stencils fit on the grid (stencil width - 1).
-int minimum_cells(ShapeKind shape) {
-  switch (shape) {
-    case ShapeKind::BSpline2:
-    case ShapeKind::UGIMP:
-    case ShapeKind::CpGIMP:
-    case ShapeKind::B2CPDI:
-      return 2;
-    case ShapeKind::BSpline3:
-    case ShapeKind::B2GIMP:
-      return 3;
-    default:
-      return 1;
-  }
-}
 
 /// One grid velocity field per body (or material), rigid fields with their prescribed velocity.
 template <int D> void set_up_contact(const Spec& spec, Simulation<D>& sim) {
@@ -62,16 +84,11 @@ template <int D> void set_up_contact(const Spec& spec, Simulation<D>& sim) {
 
 }  // namespace
 
-template <int D> Simulation<D> build_simulation(const Spec& spec) {
+template <int D>
+Simulation<D> build_simulation(const Spec& spec) {
   Simulation<D> sim;
   Vec<D> origin, h;
   std::array<int, D> cells{};
-  const int fewest = minimum_cells(spec.solver.shape);
-  for (int a = 0; a < D; ++a)
-    if (spec.grid.cells[a] < fewest)
-      throw InputError({{"grid.cell_size", std::to_string(spec.grid.cell_size[a]),
-                         "at least " + std::to_string(fewest) + " cells per direction for solver.shape " +
-                             "(its stencil is " + std::to_string(fewest + 1) + " nodes wide)"}});
   for (int a = 0; a < D; ++a) {
     origin[a] = spec.grid.min[a];
     h[a] = spec.grid.cell_size[a];
@@ -86,12 +103,16 @@ template <int D> Simulation<D> build_simulation(const Spec& spec) {
   std::vector<InputIssue> empty_bodies;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
     const auto& body = spec.bodies[b];
-    const auto added = generate_body<D>(body, static_cast<int>(b), spec.materials[body.material], sim.grid, sim.particles);
+    const auto added =
+        generate_body<D>(body, static_cast<int>(b), spec.materials[body.material], sim.grid, sim.particles);
     if (added == 0)
-      empty_bodies.push_back({"bodies[" + std::to_string(b) + "].shape", "a shape that holds no particle centre",
-                              "a shape that contains at least one sub-cell centre (enlarge it or refine the grid)"});
+      empty_bodies.push_back(
+          {"bodies[" + std::to_string(b) + "].shape", "a shape that holds no particle centre",
+           "a shape that contains at least one sub-cell centre (enlarge it or refine the grid)"});
   }
   if (!empty_bodies.empty()) throw InputError(std::move(empty_bodies));
+  if (auto overlaps = overlapping_bodies<D>(spec, sim.particles, h); !overlaps.empty())
+    throw InputError(std::move(overlaps));
   sim.initial_velocity = sim.particles.v;  // generation order = id order
   sim.initial_position = sim.particles.x;
   sort_by_cell(sim.grid, sim.particles);
@@ -109,17 +130,33 @@ template <int D> Simulation<D> build_simulation(const Spec& spec) {
   return sim;
 }
 
-template <int D> double max_wave_speed(const Simulation<D>& sim) {
+template <int D>
+double max_wave_speed(const Simulation<D>& sim) {
   double speed = 0.0;
   for (const auto& m : sim.materials) speed = std::max(speed, wave_speed<D>(m));
   return speed;
 }
 
-template <int D> double stable_time_step(const Simulation<D>& sim) {
+template <int D>
+double stable_time_step(const Simulation<D>& sim) {
   if (sim.solver.dt) return *sim.solver.dt;
   double speed = max_wave_speed(sim);
   for (const auto& v : sim.particles.v) speed = std::max(speed, v.norm());
   return sim.solver.courant * sim.grid.min_cell_size() / speed;
+}
+
+void check_setup(const Spec& spec) {
+  switch (spec.grid.dim) {
+    case 1:
+      (void)build_simulation<1>(spec);
+      break;
+    case 3:
+      (void)build_simulation<3>(spec);
+      break;
+    default:
+      (void)build_simulation<2>(spec);
+      break;
+  }
 }
 
 template Simulation<1> build_simulation<1>(const Spec&);

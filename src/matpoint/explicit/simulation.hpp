@@ -58,6 +58,11 @@ template <int D>
 Simulation<D> build_simulation(const Spec& spec);
 
 /// The largest material wave speed (the speed of the Courant number).
+/// Sets up the simulation of a validated spec (grid, particles, materials) and discards it: throws
+/// InputError for what only the set-up finds (a body that holds no particle, overlapping bodies).
+/// `matpoint check` runs it, so that check refuses everything `matpoint run` would refuse.
+void check_setup(const Spec& spec);
+
 template <int D>
 double max_wave_speed(const Simulation<D>& sim);
 

@@ -26,6 +26,7 @@
 #include "matpoint/core/errors.hpp"
 #include "matpoint/io/memory_estimate.hpp"
 #include "matpoint/io/particle_fields.hpp"
+#include "matpoint/shape/stencil_width.hpp"
 
 namespace matpoint {
 
@@ -64,6 +65,8 @@ constexpr std::size_t kMaxValueChars = 200;  // longer values are cut in message
 constexpr double kMaxCells = 1e8;
 constexpr double kCellCountTolerance = 1e-9;  // relative
 constexpr double kInsideTolerance = 1e-12;    // relative to the domain size
+constexpr double kMaxPlausibleSteps = 1e9;    // see check_step_count
+constexpr int kMaxJsonDepth = 64;             // see parse_json; the deepest valid input needs about 6
 
 // ---------------------------------------------------------------------------------------------
 // Message text
@@ -141,6 +144,14 @@ std::string choices_text(const std::array<Named<T>, N>& options) {
   return "one of " + join(names, true);
 }
 
+/// The keyword of `value` among `options`.
+template <class T, std::size_t N>
+std::string_view name_of(const std::array<Named<T>, N>& options, T value) {
+  for (const auto& option : options)
+    if (option.value == value) return option.name;
+  return "?";
+}
+
 constexpr std::array<Named<MaterialModel>, 3> kModels{{{"linear_elastic", MaterialModel::LinearElastic},
                                                       {"neo_hookean", MaterialModel::NeoHookean},
                                                       {"rigid", MaterialModel::Rigid}}};
@@ -157,9 +168,9 @@ constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
 constexpr std::array<Named<BodyShape>, 3> kShapes{
     {{"box", BodyShape::Box}, {"disk", BodyShape::Disk}, {"polygon", BodyShape::Polygon}}};
 constexpr std::array<Named<ConditionKind>, 4> kConditionKinds{{{"fixed", ConditionKind::Fixed},
-                                                                {"slip", ConditionKind::Slip},
-                                                                {"velocity", ConditionKind::Velocity},
-                                                                {"moving_wall", ConditionKind::MovingWall}}};
+                                                               {"slip", ConditionKind::Slip},
+                                                               {"velocity", ConditionKind::Velocity},
+                                                               {"moving_wall", ConditionKind::MovingWall}}};
 constexpr std::array<Named<bool>, 2> kMaterialSides{{{"below", true}, {"above", false}}};
 constexpr std::array<Named<int>, 6> kFaces{
     {{"x-", 0}, {"x+", 1}, {"y-", 2}, {"y+", 3}, {"z-", 4}, {"z+", 5}}};  // axis = id / 2, side = id % 2
@@ -171,10 +182,10 @@ constexpr std::array<Named<UpdateScheme>, 6> kSchemes{{{"usl", UpdateScheme::USL
                                                        {"usavg", UpdateScheme::USAVG},
                                                        {"usavg+", UpdateScheme::USAVGPlus}}};
 constexpr std::array<Named<VelocityTransfer>, 5> kTransfers{{{"flip", VelocityTransfer::FLIP},
-                                                            {"pic", VelocityTransfer::PIC},
-                                                            {"blend", VelocityTransfer::Blend},
-                                                            {"fmpm", VelocityTransfer::FMPM},
-                                                            {"xpic", VelocityTransfer::XPIC}}};
+                                                             {"pic", VelocityTransfer::PIC},
+                                                             {"blend", VelocityTransfer::Blend},
+                                                             {"fmpm", VelocityTransfer::FMPM},
+                                                             {"xpic", VelocityTransfer::XPIC}}};
 constexpr std::array<Named<FmpmMeasure>, 2> kFmpmMeasures{
     {{"means", FmpmMeasure::Means}, {"changes", FmpmMeasure::Changes}}};
 constexpr std::array<Named<FmpmBoundaryMethod>, 2> kFmpmBoundaryMethods{
@@ -463,14 +474,26 @@ class RepeatedKeyFinder {
   std::vector<Frame> frames_;
 };
 
+/// Thrown by the parser callback when arrays/objects nest deeper than kMaxJsonDepth: deeper values
+/// are refused before anything walks them recursively (dumping one for a message would overflow
+/// the stack; found by the fuzzer, tests/inputs/bad/deeply_nested.json).
+struct TooDeep {};
+
 /// Parses the text (comments allowed); a syntax error becomes an issue and nullopt.
 std::optional<json> parse_json(const std::string& text, Issues& issues) {
   RepeatedKeyFinder finder(issues);
-  const json::parser_callback_t callback = [&finder](int /*depth*/, json::parse_event_t event, json& parsed) {
+  const json::parser_callback_t callback = [&finder](int depth, json::parse_event_t event, json& parsed) {
+    const bool opens =
+        event == json::parse_event_t::object_start || event == json::parse_event_t::array_start;
+    if (opens && depth >= kMaxJsonDepth) throw TooDeep{};
     return finder.on_event(event, parsed);
   };
   try {
     return json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const TooDeep&) {
+    issues.add("(json)", "arrays or objects nested more than " + std::to_string(kMaxJsonDepth) + " deep",
+               "an input nested at most " + std::to_string(kMaxJsonDepth) + " levels deep");
+    return std::nullopt;
   } catch (const json::exception& e) {
     std::string what = e.what();  // "[json.exception.parse_error.101] parse error at line 3, column 7: ..."
     if (const auto end = what.find("] "); what.starts_with("[json.exception") && end != std::string::npos)
@@ -505,6 +528,8 @@ class SpecReader {
         Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields"}));
     read_checks(top.optional("checks"));
     read_contact(top.optional("contact"));
+    if (grid_ok_) check_stencil_fits();
+    if (issues_.empty()) check_step_count();
     return std::move(spec_);
   }
 
@@ -686,9 +711,8 @@ class SpecReader {
   }
 
   BodySpec read_body(const Value& v, std::size_t index) {
-    const Object b(v,
-                   {"name", "material", "shape", "particles_per_cell", "velocity", "velocity_sine", "velocity_gradient",
-                    "velocity_noise"});
+    const Object b(v, {"name", "material", "shape", "particles_per_cell", "velocity", "velocity_sine",
+                       "velocity_gradient", "velocity_noise"});
     BodySpec out;
     out.name = "body" + std::to_string(index);
     if (!b.valid()) return out;
@@ -702,7 +726,8 @@ class SpecReader {
     const Object noise(b.optional("velocity_noise"), {"amplitude", "seed"});
     if (noise.valid()) {
       set_if(out.noise_amplitude, noise.required("amplitude").number(kNonNegative));
-      if (const auto seed = noise.optional("seed").integer(0, UINT_MAX)) out.noise_seed = static_cast<unsigned>(*seed);
+      if (const auto seed = noise.optional("seed").integer(0, UINT_MAX))
+        out.noise_seed = static_cast<unsigned>(*seed);
     }
     return out;
   }
@@ -829,7 +854,8 @@ class SpecReader {
   /// A dim x dim matrix as an array of rows: V += G x.
   void read_velocity_gradient(const Value& v, BodySpec& out) const {
     if (!v.present()) return;
-    const std::string expected = "an array of " + std::to_string(dim_) + " rows of " + numbers_text(dim_, kAnyNumber);
+    const std::string expected =
+        "an array of " + std::to_string(dim_) + " rows of " + numbers_text(dim_, kAnyNumber);
     const auto rows = v.elements(expected, 1);
     if (dim_ != 0 && rows.size() != static_cast<std::size_t>(dim_) && !rows.empty()) {
       v.fail(expected);
@@ -857,7 +883,8 @@ class SpecReader {
         spec_.conditions.push_back(read_moving_wall(
             Object(item, {"type", "axis", "position", "material", "velocity", "depth", "stretch_about"})));
       else
-        spec_.conditions.push_back(read_condition(Object(item, {"face", "box", "type", "normal", "velocity"})));
+        spec_.conditions.push_back(
+            read_condition(Object(item, {"face", "box", "type", "normal", "velocity"})));
     }
   }
 
@@ -870,7 +897,8 @@ class SpecReader {
     if (!c.valid()) return out;
     if (const auto axis = c.required("axis").choice(kAxes)) {
       out.normal_axis = *axis;
-      if (dim_ != 0 && *axis >= dim_) c.required("axis").fail("an axis of the grid (" + std::to_string(dim_) + "-D)");
+      if (dim_ != 0 && *axis >= dim_)
+        c.required("axis").fail("an axis of the grid (" + std::to_string(dim_) + "-D)");
     }
     set_if(out.wall_position, c.required("position").number());
     set_if(out.material_below, c.required("material").choice(kMaterialSides));
@@ -988,6 +1016,7 @@ class SpecReader {
 
   /// A number (a constant) or {"table": [[t0, v0], [t1, v1], ...]} with strictly increasing t.
   static std::optional<TimeFunction> read_time_function(const Value& v, const std::string& expected) {
+    if (!v.usable(expected)) return std::nullopt;  // absent: an issue when required (fuzzer finding)
     if (v.get().is_number()) {
       const auto x = v.number();
       if (!x) return std::nullopt;
@@ -1060,7 +1089,8 @@ class SpecReader {
       return;
     }
     if (!fmpm) return;
-    const Object f(s.optional("fmpm"), {"order", "blend", "dynamic", "periodic", "boundary_method", "recursion"});
+    const Object f(s.optional("fmpm"),
+                   {"order", "blend", "dynamic", "periodic", "boundary_method", "recursion"});
     FmpmSpec& k = out.fmpm;
     set_if(k.order, f.optional("order").integer(1, kMaxFmpmOrder));
     const Object blend(f.optional("blend"), {"with", "factor"});
@@ -1091,6 +1121,44 @@ class SpecReader {
     set_if(k.recursion, f.optional("recursion").choice(kFmpmRecursions));
     if (k.recursion == FmpmRecursion::Binomial && (k.blend_with > 0 || k.measure != FmpmMeasure::None))
       f.optional("recursion").fail("\"incremental\" with blend or dynamic (eq. 4 has no per-increment step)");
+  }
+
+  /// The basis's stencil must fit on the grid (shape/stencil_width.hpp).
+  void check_stencil_fits() {
+    const int fewest = minimum_cells(spec_.solver.shape);
+    for (int a = 0; a < dim_; ++a)
+      if (spec_.grid.cells[a] < fewest) {
+        issues_.add("grid.cell_size", format_number(spec_.grid.cell_size[a]),
+                    "at least " + std::to_string(fewest) + " cells per direction for solver.shape \"" +
+                        std::string(name_of(kShapeKinds, spec_.solver.shape)) + "\" (its stencil is " +
+                        std::to_string(fewest + 1) + " nodes wide); the grid has " +
+                        std::to_string(spec_.grid.cells[a]) + " along axis " + std::to_string(a));
+        return;
+      }
+  }
+
+  /// A run of more than kMaxPlausibleSteps steps without solver.max_steps is almost always a unit
+  /// mix-up (end_time in ms against SI moduli, a cell size in m against a grid in mm, ...): refused
+  /// with the estimate. dt from solver.dt, or the Courant number with the elastic wave speed
+  /// sqrt((lambda + 2 mu) / rho) of the stiffest material (particle speeds are not known yet).
+  void check_step_count() {
+    const SolverSpec& solver = spec_.solver;
+    if (solver.max_steps > 0) return;
+    double dt = solver.dt.value_or(0.0);
+    if (!solver.dt) {
+      double speed = 0.0, h = kInf;
+      for (const auto& m : spec_.materials)
+        speed = std::max(speed, std::sqrt((m.lambda + 2.0 * m.mu) / m.density));
+      for (int a = 0; a < dim_; ++a) h = std::min(h, spec_.grid.cell_size[a]);
+      if (!(speed > 0.0)) return;
+      dt = solver.courant * h / speed;
+    }
+    const double steps = solver.end_time / dt;
+    if (steps <= kMaxPlausibleSteps) return;
+    issues_.add("solver.end_time", format_number(solver.end_time),
+                "a run of at most 1e9 time steps without solver.max_steps; this one needs about " +
+                    format_number(std::round(steps)) + " steps of dt = " + format_number(dt) +
+                    " (check the units of end_time, cell_size, E and density, or set solver.max_steps)");
   }
 
   void read_output(const Object& o) {

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Regenerates the benchmark table of docs/verification.md: scripts/verification_table.py [--build DIR]
+
+Runs every example that carries reference checks (examples/*/input.json with "checks") and the
+built-in verification problems (`matpoint verify --json`), then rewrites the part of
+docs/verification.md between the markers
+
+    <!-- BEGIN GENERATED: benchmark table (scripts/verification_table.py) -->
+    <!-- END GENERATED -->
+
+with one row per check: benchmark, check, expected, tolerance, measured, status, source. Runs go to
+out/verification/. Exit 0 when every check passes, 1 otherwise (the table is written either way).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BEGIN = "<!-- BEGIN GENERATED: benchmark table (scripts/verification_table.py) -->"
+END = "<!-- END GENERATED -->"
+
+
+def strip_comments(text):
+    """The input format allows // comments on their own lines; enough to find the checks key."""
+    return "\n".join(line for line in text.splitlines() if not line.lstrip().startswith("//"))
+
+
+def examples_with_checks():
+    folder = os.path.join(ROOT, "examples")
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name, "input.json")
+        if not os.path.exists(path):
+            continue
+        try:
+            spec = json.loads(strip_comments(open(path).read()))
+        except ValueError:
+            spec = {"checks": [True]}  # block comments: let matpoint read it
+        if spec.get("checks"):
+            yield name, path
+
+
+def fmt(x):
+    if isinstance(x, bool):
+        return str(x).lower()
+    if isinstance(x, (int, float)):
+        return f"{x:.4g}"
+    return str(x)
+
+
+def run_example(matpoint, name, path):
+    out = os.path.join(ROOT, "out", "verification", name)
+    result = subprocess.run([matpoint, "run", path, "--out", out, "--quiet"], capture_output=True, text=True)
+    summary_file = os.path.join(out, "summary.json")
+    if result.returncode != 0 or not os.path.exists(summary_file):
+        return [(name, "run", "exit 0", "", f"exit {result.returncode}", "FAIL", result.stderr.strip()[-200:])]
+    rows = []
+    for c in json.load(open(summary_file)).get("checks", []):
+        rows.append((f"examples/{name}", c["name"], fmt(c["expected"]), fmt(c["tolerance"]), fmt(c["measured"]),
+                     "pass" if c["pass"] else "FAIL", c.get("source", "")))
+    return rows
+
+
+def run_verify(matpoint):
+    out = os.path.join(ROOT, "out", "verification", "verify")
+    result = subprocess.run([matpoint, "verify", "--json", "--out", out], capture_output=True, text=True)
+    try:
+        checks = json.loads(result.stdout)
+    except ValueError:
+        return [("matpoint verify", "run", "exit 0", "", f"exit {result.returncode}", "FAIL", result.stderr[-200:])]
+    rows = []
+    for c in checks:
+        expected = f"{c.get('relation', '')} {fmt(c['expected'])}".strip()
+        rows.append((f"verify {c['name']}", c.get("method", ""), expected, fmt(c.get("tolerance", "")),
+                     fmt(c["measured"]), "pass" if c["pass"] else "FAIL", c.get("source", "")))
+    return rows
+
+
+def table(rows):
+    lines = ["| benchmark | check | expected | tolerance | measured | status | source |",
+             "|---|---|---|---|---|---|---|"]
+    for row in rows:
+        lines.append("| " + " | ".join(str(cell).replace("|", "/").replace("\n", " ") for cell in row) + " |")
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="build folder holding matpoint")
+    args = parser.parse_args()
+    matpoint = os.path.join(args.build, "matpoint")
+    if not os.path.exists(matpoint):
+        sys.exit(f"verification_table.py: {matpoint} not found (run scripts/setup.sh)")
+    rows = []
+    for name, path in examples_with_checks():
+        print(f"running examples/{name}", file=sys.stderr)
+        rows += run_example(matpoint, name, path)
+    print("running matpoint verify", file=sys.stderr)
+    rows += run_verify(matpoint)
+
+    doc_path = os.path.join(ROOT, "docs", "verification.md")
+    doc = open(doc_path).read()
+    passed = sum(r[5] == "pass" for r in rows)
+    block = (f"{BEGIN}\n{passed} of {len(rows)} checks pass. Regenerate with `scripts/verification_table.py` "
+             f"(runs every example with checks and `matpoint verify`).\n\n{table(rows)}\n{END}")
+    if BEGIN in doc and END in doc:
+        doc = doc[:doc.index(BEGIN)] + block + doc[doc.index(END) + len(END):]
+    else:
+        doc = doc.rstrip() + "\n\n## Every benchmark: expected, measured, status\n\n" + block + "\n"
+    temporary = doc_path + ".partial"
+    with open(temporary, "w") as f:
+        f.write(doc)
+    os.replace(temporary, doc_path)
+    print(f"{passed} of {len(rows)} checks pass; table written to docs/verification.md", file=sys.stderr)
+    return 0 if passed == len(rows) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
