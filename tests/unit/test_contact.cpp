@@ -12,9 +12,9 @@
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/io/input.hpp"
+#include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
-#include "matpoint/shape/cpdi_stencils.hpp"
 
 namespace {
 
@@ -34,7 +34,8 @@ TEST(ContactLaw, SeparatingFieldsGetNothing) {
 }
 
 TEST(ContactLaw, FrictionlessKeepsOnlyTheNormalPart) {
-  const Vec<2> dp = contact_momentum_change<2>({ContactLaw::Frictionless, 0.0}, Vec<2>(0.3, -0.5), Vec<2>(0, 1));
+  const Vec<2> dp =
+      contact_momentum_change<2>({ContactLaw::Frictionless, 0.0}, Vec<2>(0.3, -0.5), Vec<2>(0, 1));
   EXPECT_DOUBLE_EQ(dp[0], 0.0);
   EXPECT_DOUBLE_EQ(dp[1], -0.5);
 }
@@ -64,8 +65,10 @@ std::string two_blocks(const std::string& solver, const std::string& contact) {
         "velocity": [-1, 0] } ],
     "boundary_conditions": [ { "face": "y-", "type": "slip" } ],
     "loads": { "gravity": [0, -10] },
-    "solver": )" + solver + R"(,
-    "output": { "particles": false, "plots": false })" + contact + "}";
+    "solver": )" +
+         solver + R"(,
+    "output": { "particles": false, "plots": false })" +
+         contact + "}";
 }
 
 template <class Stencils>
@@ -90,7 +93,8 @@ double worst_grid_velocity_difference(const std::string& solver, const std::stri
         const Index k = f * n + i;
         if (!(multi.fields.mass[k] > multi.mass_floor)) continue;
         ++present;
-        worst = std::max(worst, (multi.fields.velocity_new[k] - single.fields.velocity_new[i]).norm() / scale);
+        worst =
+            std::max(worst, (multi.fields.velocity_new[k] - single.fields.velocity_new[i]).norm() / scale);
       }
       if (present == 2) ++shared;
     }
@@ -117,10 +121,11 @@ TEST(StickContact, MuslFlipReproducesTheSingleFieldRun) {
 
 TEST(StickContact, FmpmNetReproducesTheSingleFieldRunStepByStep) {
   for (int k : {2, 4, 8}) {
-    const std::string solver = R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": )" + std::to_string(k) +
-                               R"( }, "shape": "cpdi1", "courant": 0.2, "end_time": 1 })";
-    EXPECT_LT(worst_grid_velocity_difference<Cpdi>(solver, R"({ "law": "stick", "fmpm_method": "net" })", kSteps),
-              1e-10)
+    const std::string solver = R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": )" +
+                               std::to_string(k) + R"( }, "shape": "cpdi1", "courant": 0.2, "end_time": 1 })";
+    EXPECT_LT(
+        worst_grid_velocity_difference<Cpdi>(solver, R"({ "law": "stick", "fmpm_method": "net" })", kSteps),
+        1e-10)
         << "FMPM(" << k << ")";
   }
 }
@@ -128,15 +133,16 @@ TEST(StickContact, FmpmNetReproducesTheSingleFieldRunStepByStep) {
 TEST(StickContact, FmpmEvolvingAlsoReproducesTheSingleFieldRun) {
   const std::string solver =
       R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": 4 }, "shape": "cpdi1", "courant": 0.2, "end_time": 1 })";
-  EXPECT_LT(worst_grid_velocity_difference<Cpdi>(solver, R"({ "law": "stick", "fmpm_method": "evolving" })", kSteps),
+  EXPECT_LT(worst_grid_velocity_difference<Cpdi>(solver, R"({ "law": "stick", "fmpm_method": "evolving" })",
+                                                 kSteps),
             1e-10);
 }
 
 // --- input errors name the JSON path (exit 2 before any work) ---
 
 /// The paths of the issues parse_spec reports for the two-block input with `contact`.
-std::vector<std::string> contact_issue_paths(const std::string& contact, const std::string& solver =
-                                                 R"({ "end_time": 1 })") {
+std::vector<std::string> contact_issue_paths(const std::string& contact,
+                                             const std::string& solver = R"({ "end_time": 1 })") {
   try {
     (void)parse_spec(two_blocks(solver, ",\n\"contact\": " + contact));
   } catch (const InputError& e) {
@@ -154,8 +160,10 @@ TEST(ContactInput, NamesThePathOfEachMistake) {
   EXPECT_EQ(contact_issue_paths(R"({ "law": "coulomb" })"), Paths{"contact.friction"});
   EXPECT_EQ(contact_issue_paths(R"({ "law": "stick", "friction": 0.3 })"), Paths{"contact.friction"});
   EXPECT_EQ(contact_issue_paths(R"({ "normals": "logistic" })"), Paths{"contact.normals"});
-  EXPECT_EQ(contact_issue_paths(R"({ "pairs": [ { "between": ["a", "zz"] } ] })"), Paths{"contact.pairs[0].between[1]"});
-  EXPECT_EQ(contact_issue_paths(R"({ "pairs": [ { "between": ["a", "a"] } ] })"), Paths{"contact.pairs[0].between"});
+  EXPECT_EQ(contact_issue_paths(R"({ "pairs": [ { "between": ["a", "zz"] } ] })"),
+            Paths{"contact.pairs[0].between[1]"});
+  EXPECT_EQ(contact_issue_paths(R"({ "pairs": [ { "between": ["a", "a"] } ] })"),
+            Paths{"contact.pairs[0].between"});
   EXPECT_EQ(contact_issue_paths(R"({})", R"({ "transfer": "xpic", "end_time": 1 })"), Paths{"contact"});
   EXPECT_EQ(contact_issue_paths(R"({})", R"({ "shape": "cpdi2", "end_time": 1 })"), Paths{"contact"});
   // one field: two bodies of one material grouped by material

@@ -14,14 +14,14 @@
 //    within 0.2 mm (1 % of a diameter, the paper's "essentially identical" at the scale of Fig. 8)
 //    of FLIP's. The paper's absolute values (< 2 % for FLIP and FMPM(4), 18.7 % for FMPM(1)) are
 //    1/3 mm results: sweep.py measures them (README.md), too slow for the default suite.
-#include "matpoint/analysis/measures_eval.hpp"
-#include "test_support.hpp"
-
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
+
+#include "matpoint/analysis/measures_eval.hpp"
+#include "test_support.hpp"
 
 namespace {
 
@@ -30,7 +30,8 @@ using namespace matpoint::test;
 
 double sliding_error(double mu, VelocityTransfer transfer, double end_time) {
   Spec spec = load_example("incline-friction");
-  spec.contact.law = mu > 0 ? ContactLawSpec{ContactLaw::Coulomb, mu} : ContactLawSpec{ContactLaw::Frictionless, 0};
+  spec.contact.law =
+      mu > 0 ? ContactLawSpec{ContactLaw::Coulomb, mu} : ContactLawSpec{ContactLaw::Frictionless, 0};
   spec.solver.transfer = transfer;
   spec.solver.end_time = end_time;
   const auto result = run_quietly(spec, "incline_" + std::to_string(mu));
@@ -54,7 +55,8 @@ struct DiskRun {
 DiskRun run_disks(VelocityTransfer transfer, int order, const std::string& tag, double cell = 1e-3) {
   Spec spec = load_example("two-disks-contact");
   spec.grid.cell_size = {cell, cell, 0};
-  for (int a = 0; a < 2; ++a) spec.grid.cells[a] = static_cast<int>(std::lround((spec.grid.max[a] - spec.grid.min[a]) / cell));
+  for (int a = 0; a < 2; ++a)
+    spec.grid.cells[a] = static_cast<int>(std::lround((spec.grid.max[a] - spec.grid.min[a]) / cell));
   spec.solver.transfer = transfer;
   spec.solver.fmpm.order = order;
   spec.solver.position_alpha = transfer == VelocityTransfer::FMPM ? 0.5 : 1.0;
@@ -86,8 +88,10 @@ TEST(TwoDisksContact, EnergyLossAndTrajectoriesFollowNairnFigures8And9) {
       worst = std::max(worst, std::abs(flip.right[s][a] - k4.right[s][a]));
     }
   EXPECT_LT(worst, 2e-4);
-  std::printf("[ disks 1 mm, mu 0.3 ] loss FLIP %.4f (0.5 mm: %.4f), FMPM(1) %.4f, FMPM(2) %.4f, FMPM(4) %.4f; "
-              "COM gap %.3g m\n", flip.loss, fine.loss, k1.loss, k2.loss, k4.loss, worst);
+  std::printf(
+      "[ disks 1 mm, mu 0.3 ] loss FLIP %.4f (0.5 mm: %.4f), FMPM(1) %.4f, FMPM(2) %.4f, FMPM(4) %.4f; "
+      "COM gap %.3g m\n",
+      flip.loss, fine.loss, k1.loss, k2.loss, k4.loss, worst);
 }
 
 }  // namespace

@@ -133,7 +133,7 @@ class MultiFieldContact {
     Kind kind;
     ContactLawSpec law;
     Vec<D> normal = Vec<D>::Zero();  // from a to b
-    bool touching = true;           // normal defined and, with the position criterion, gap closed
+    bool touching = true;            // normal defined and, with the position criterion, gap closed
     Vec<D> prior = Vec<D>::Zero(), net = Vec<D>::Zero(), applied = Vec<D>::Zero();
   };
 

@@ -25,7 +25,7 @@ Vec<D> contact_momentum_change(const ContactLawSpec& law, const Vec<D>& dp0, con
   const Vec<D> tangential = dp0 - normal;
   const double dt = tangential.norm();
   const double limit = law.friction * (-dn);
-  if (dt <= limit) return dp0;  // Coulomb stick
+  if (dt <= limit) return dp0;                // Coulomb stick
   return normal + (limit / dt) * tangential;  // slide: S_slide A_c dt = mu N_c A_c dt
 }
 

@@ -104,7 +104,8 @@ class ExplicitStepper {
     if constexpr ((What & kScatterMass) != 0)
       if (s_.conditions.has_walls()) s_.conditions.select_wall_nodes(s_.time, s_.fields.mass, s_.mass_floor);
     if constexpr (kFields && (What & kScatterMomentum) != 0) {  // task 1.a (and 4.b): lumped contact on p
-      if constexpr ((What & kScatterMass) != 0) s_.contact.prepare(grid_, stencils_, s_.particles, s_.fields.mass);
+      if constexpr ((What & kScatterMass) != 0)
+        s_.contact.prepare(grid_, stencils_, s_.particles, s_.fields.mass);
       s_.contact.set_rigid(s_.fields.mass, s_.fields.momentum, s_.time, /*momentum=*/true);
       s_.contact.apply_lumped(s_.fields.mass, s_.fields.momentum, /*momentum=*/true);
     }

@@ -6,22 +6,23 @@
 // offset costs nothing where there is no contact.
 #pragma once
 
+#include <utility>
+#include <vector>
+
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/particles/particle_set.hpp"
 
-#include <utility>
-#include <vector>
-
 namespace matpoint {
 
-template <int D, class Base> struct FieldStencils {
+template <int D, class Base>
+struct FieldStencils {
   static constexpr bool multi_field = true;
 
   Base base;
   std::vector<int> field_of;  // field of each body (or material), set once
   bool by_material = false;
-  Index field_nodes = 0;           // N: nodes of one field
+  Index field_nodes = 0;      // N: nodes of one field
   std::vector<Index> offset;  // by particle storage index: field * N
 
   void evaluate(const Grid<D>& grid, const ParticleSet<D>& particles) {
@@ -38,7 +39,8 @@ template <int D, class Base> struct FieldStencils {
     return {lo + offset[p], hi + offset[p]};
   }
 
-  template <class Fn> void for_each_node(const Grid<D>& grid, std::size_t p, Fn&& fn) const {
+  template <class Fn>
+  void for_each_node(const Grid<D>& grid, std::size_t p, Fn&& fn) const {
     const Index o = offset[p];
     base.for_each_node(grid, p, [&](Index node, double N, const auto& dN) { fn(node + o, N, dN); });
   }

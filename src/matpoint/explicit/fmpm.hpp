@@ -109,7 +109,7 @@ class FmpmLoop {
       for (std::ptrdiff_t i = 0; i < nodes; ++i) prev_[i] = scale * (prev_[i] - next_[i]);  // A dv(l-1)
       if (spec_.boundary_method == FmpmBoundaryMethod::Incremental)
         conditions.zero_constrained(prev_, &mass, impulse);  // (1)
-      if (correction_) correction_(prev_);                    // (2)
+      if (correction_) correction_(prev_);                   // (2)
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) v[i] += prev_[i];
       if (spec_.measure != FmpmMeasure::None && measure(mass, mass_floor, v) < spec_.limit) return l;  // (3)

@@ -1,5 +1,13 @@
 #include "matpoint/explicit/runner.hpp"
 
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <iomanip>
+#include <sstream>
+
 #include "matpoint/analysis/diagnostics.hpp"
 #include "matpoint/analysis/history.hpp"
 #include "matpoint/analysis/measures_eval.hpp"
@@ -13,14 +21,6 @@
 #include "matpoint/shape/domains.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
-
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <ctime>
-#include <iomanip>
-#include <sstream>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -230,7 +230,8 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
 }
 
 /// The basis's stencils, plain or (contact) shifted to each particle's velocity field.
-template <int D, class Base> RunResult run_with_fields(const Spec& spec, const RunOptions& options) {
+template <int D, class Base>
+RunResult run_with_fields(const Spec& spec, const RunOptions& options) {
   if constexpr (D > 1)
     if (spec.contact.enabled) return run_with<D, FieldStencils<D, Base>>(spec, options);
   return run_with<D, Base>(spec, options);

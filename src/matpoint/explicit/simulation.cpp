@@ -60,7 +60,8 @@ int ghost_layers(ShapeKind shape) {
 namespace {
 
 /// One grid velocity field per body (or material), rigid fields with their prescribed velocity.
-template <int D> void set_up_contact(const Spec& spec, Simulation<D>& sim) {
+template <int D>
+void set_up_contact(const Spec& spec, Simulation<D>& sim) {
   const ContactSpec& c = spec.contact;
   const auto fields = static_cast<int>(c.by_material ? spec.materials.size() : spec.bodies.size());
   sim.has_contact = true;
@@ -70,7 +71,8 @@ template <int D> void set_up_contact(const Spec& spec, Simulation<D>& sim) {
   std::vector<std::vector<TimeFunction>> rigid(static_cast<std::size_t>(fields));
   for (int f = 0; f < fields; ++f) {
     const auto& m = spec.materials[c.by_material ? f : spec.bodies[f].material];
-    if (m.model == MaterialModel::Rigid) rigid[f].assign(m.rigid_velocity.begin(), m.rigid_velocity.begin() + D);
+    if (m.model == MaterialModel::Rigid)
+      rigid[f].assign(m.rigid_velocity.begin(), m.rigid_velocity.begin() + D);
   }
   sim.contact = MultiFieldContact<D>(c, fields, sim.grid.node_count, sim.grid.min_cell_size(), sim.mass_floor,
                                      std::move(rigid));

@@ -49,7 +49,8 @@ VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpe
   }
 }
 
-template <int D> void VelocityConditions<D>::replicate(int fields) {
+template <int D>
+void VelocityConditions<D>::replicate(int fields) {
   const std::size_t single = entries_.size() / static_cast<std::size_t>(fields_);
   entries_.resize(single);
   for (int f = 1; f < fields; ++f)
@@ -64,13 +65,12 @@ template <int D> void VelocityConditions<D>::replicate(int fields) {
 template <int D>
 void VelocityConditions<D>::select_wall_nodes(double t, const std::vector<double>& mass, double mass_floor) {
   wall_entries_.clear();
-  for (int f = 0; f < fields_; ++f)
-    select_field_wall_nodes(t, mass, mass_floor, f * grid_.node_count);
+  for (int f = 0; f < fields_; ++f) select_field_wall_nodes(t, mass, mass_floor, f * grid_.node_count);
 }
 
 template <int D>
-void VelocityConditions<D>::select_field_wall_nodes(double t, const std::vector<double>& mass, double mass_floor,
-                                                    Index offset) {
+void VelocityConditions<D>::select_field_wall_nodes(double t, const std::vector<double>& mass,
+                                                    double mass_floor, Index offset) {
   for (const auto& w : walls_) {
     const int a = w.normal_axis;
     const double x_wall = w.wall_position + w.wall_velocity.integral(t);

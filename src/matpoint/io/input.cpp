@@ -153,8 +153,8 @@ std::string_view name_of(const std::array<Named<T>, N>& options, T value) {
 }
 
 constexpr std::array<Named<MaterialModel>, 3> kModels{{{"linear_elastic", MaterialModel::LinearElastic},
-                                                      {"neo_hookean", MaterialModel::NeoHookean},
-                                                      {"rigid", MaterialModel::Rigid}}};
+                                                       {"neo_hookean", MaterialModel::NeoHookean},
+                                                       {"rigid", MaterialModel::Rigid}}};
 constexpr std::array<Named<ContactLaw>, 3> kContactLaws{{{"stick", ContactLaw::Stick},
                                                          {"frictionless", ContactLaw::Frictionless},
                                                          {"coulomb", ContactLaw::Coulomb}}};
@@ -1206,7 +1206,6 @@ class SpecReader {
     check.measure = v.get().get<std::string>();
   }
 
-
   // --- contact (Nairn 2026 §3.2; docs/theory/contact.md) ---
 
   void read_contact(const Value& v) {
@@ -1267,8 +1266,9 @@ class SpecReader {
       ContactPairSpec pair;
       pair.law = read_contact_law(p);
       const Value between = p.required("between");
-      const std::string expected = "two different names of " + std::string(out.by_material ? "materials" : "bodies") +
-                                   ": " + join(names, true);
+      const std::string expected = "two different names of " +
+                                   std::string(out.by_material ? "materials" : "bodies") + ": " +
+                                   join(names, true);
       const auto ends = between.elements(expected, 2);
       if (ends.empty()) continue;
       if (ends.size() != 2) {
@@ -1300,10 +1300,12 @@ class SpecReader {
   void check_contact_solver(const Value& v) const {
     const SolverSpec& s = spec_.solver;
     if (dim_ == 1) v.fail("no contact in a 1-D grid (contact needs grid.dim 2 or 3)");
-    if (s.transfer == VelocityTransfer::XPIC) v.fail("no contact with transfer \"xpic\" (use \"fmpm\" or \"flip\")");
+    if (s.transfer == VelocityTransfer::XPIC)
+      v.fail("no contact with transfer \"xpic\" (use \"fmpm\" or \"flip\")");
     if (s.transfer == VelocityTransfer::FMPM && s.fmpm.recursion == FmpmRecursion::Binomial)
       v.fail("no contact with fmpm.recursion \"binomial\" (eq. 4 has no per-increment contact step)");
-    if (s.shape == ShapeKind::CPDI2) v.fail("no contact with solver.shape \"cpdi2\" (tracked corners); use \"cpdi1\"");
+    if (s.shape == ShapeKind::CPDI2)
+      v.fail("no contact with solver.shape \"cpdi2\" (tracked corners); use \"cpdi1\"");
   }
 
   Issues& issues_;

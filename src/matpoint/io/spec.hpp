@@ -157,7 +157,7 @@ struct CheckSpec {
 /// its own grid velocity field, and nodes shared by two or more fields get a contact law.
 enum class ContactLaw { Stick, Frictionless, Coulomb };
 enum class ContactNormals { MassGradient, Average };  // one field's mass gradient, or both volume gradients
-enum class ContactFmpmMethod { Net, Evolving };        // increments inside the FMPM loop (§3.2)
+enum class ContactFmpmMethod { Net, Evolving };       // increments inside the FMPM loop (§3.2)
 
 struct ContactLawSpec {
   ContactLaw law = ContactLaw::Stick;

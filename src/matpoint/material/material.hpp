@@ -3,14 +3,14 @@
 // alternative in Material, one case in make_material.
 #pragma once
 
+#include <variant>
+#include <vector>
+
 #include "matpoint/io/spec.hpp"
 #include "matpoint/material/linear_elastic.hpp"
 #include "matpoint/material/neo_hookean.hpp"
 #include "matpoint/material/rigid.hpp"
 #include "matpoint/particles/particle_set.hpp"
-
-#include <variant>
-#include <vector>
 
 namespace matpoint {
 

@@ -10,9 +10,18 @@ namespace matpoint {
 struct Rigid {
   double density;
 
-  template <int D> [[nodiscard]] Mat<D> stress(const Mat<D>& /*F*/) const { return Mat<D>::Zero(); }
-  template <int D> [[nodiscard]] double energy_density(const Mat<D>& /*F*/) const { return 0.0; }
-  template <int D> [[nodiscard]] double wave_speed() const { return 0.0; }
+  template <int D>
+  [[nodiscard]] Mat<D> stress(const Mat<D>& /*F*/) const {
+    return Mat<D>::Zero();
+  }
+  template <int D>
+  [[nodiscard]] double energy_density(const Mat<D>& /*F*/) const {
+    return 0.0;
+  }
+  template <int D>
+  [[nodiscard]] double wave_speed() const {
+    return 0.0;
+  }
 };
 
 }  // namespace matpoint
