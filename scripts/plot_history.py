@@ -5,7 +5,8 @@ Writes DIR/plots/energy.png (energies and the relative energy-balance drift), DI
 and, for 2-D runs, DIR/plots/final_state.png (the last particles_NNNNNN.vtu coloured by speed).
 Each image is saved under a temporary name and renamed, so a plot is either whole or absent.
 Run by `matpoint run` at the end of a run and by `matpoint plot DIR`; needs python3-matplotlib
-(and python3-meshio for final_state.png, skipped without it).
+(and python3-meshio for final_state.png, skipped without it). MATPOINT_PLOT_DPI sets the
+resolution (default 120; scripts/verification_table.py --figures uses 50 for the examples' READMEs).
 """
 import csv
 import json
@@ -37,7 +38,7 @@ def read_history(path):
 def save(fig, plots, name):
     final = os.path.join(plots, name)
     temporary = final[:-4] + ".partial.png"  # the extension tells matplotlib the format
-    fig.savefig(temporary, dpi=120)
+    fig.savefig(temporary, dpi=int(os.environ.get("MATPOINT_PLOT_DPI", "120")))
     plt.close(fig)
     os.replace(temporary, final)
 

@@ -10,6 +10,9 @@ docs/verification.md between the markers
 
 with one row per check: benchmark, check, expected, tolerance, measured, status, source. Runs go to
 out/verification/. Exit 0 when every check passes, 1 otherwise (the table is written either way).
+
+--figures also redraws each example's plots at low resolution into examples/NAME/figures/
+(energy.png, and final_state.png for 2-D runs), the small pictures the example READMEs show.
 """
 import argparse
 import json
@@ -49,12 +52,28 @@ def fmt(x):
     return str(x)
 
 
-def run_example(matpoint, name, path):
+def save_figures(name, out):
+    """Low-resolution copies of the run's plots for the example's README (examples/NAME/figures/)."""
+    python = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
+    env = dict(os.environ, MATPOINT_PLOT_DPI="50")
+    subprocess.run([python, os.path.join(ROOT, "scripts", "plot_history.py"), out], env=env, check=False)
+    folder = os.path.join(ROOT, "examples", name, "figures")
+    os.makedirs(folder, exist_ok=True)
+    for plot in ("energy.png", "final_state.png"):
+        source = os.path.join(out, "plots", plot)
+        if os.path.exists(source):
+            with open(source, "rb") as f, open(os.path.join(folder, plot), "wb") as g:
+                g.write(f.read())
+
+
+def run_example(matpoint, name, path, figures=False):
     out = os.path.join(ROOT, "out", "verification", name)
     result = subprocess.run([matpoint, "run", path, "--out", out, "--quiet"], capture_output=True, text=True)
     summary_file = os.path.join(out, "summary.json")
     if result.returncode != 0 or not os.path.exists(summary_file):
         return [(name, "run", "exit 0", "", f"exit {result.returncode}", "FAIL", result.stderr.strip()[-200:])]
+    if figures:
+        save_figures(name, out)
     rows = []
     for c in json.load(open(summary_file)).get("checks", []):
         rows.append((f"examples/{name}", c["name"], fmt(c["expected"]), fmt(c["tolerance"]), fmt(c["measured"]),
@@ -88,6 +107,7 @@ def table(rows):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="build folder holding matpoint")
+    parser.add_argument("--figures", action="store_true", help="redraw examples/NAME/figures/*.png (small)")
     args = parser.parse_args()
     matpoint = os.path.join(args.build, "matpoint")
     if not os.path.exists(matpoint):
@@ -95,7 +115,7 @@ def main():
     rows = []
     for name, path in examples_with_checks():
         print(f"running examples/{name}", file=sys.stderr)
-        rows += run_example(matpoint, name, path)
+        rows += run_example(matpoint, name, path, args.figures)
     print("running matpoint verify", file=sys.stderr)
     rows += run_verify(matpoint)
 

@@ -19,6 +19,7 @@ class VerifyCommand {
   std::string scripts_dir_;
   std::vector<std::string> names_;
   std::string shape_;
+  std::string method_;  // mpm, impm, improved-cpdi
   double amplitude_ = 0;
   std::vector<int> cells_;
   int particles_per_cell_ = 2;

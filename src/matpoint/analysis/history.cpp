@@ -17,6 +17,8 @@ std::string History::csv() const {
     for (int a = 0; a < dim; ++a) out << ",body" << b << "_com_velocity_" << axis[a];
     for (int a = 0; a < dim; ++a) out << ",body" << b << "_com_" << axis[a];
   }
+  for (int a = 0; a < dim; ++a) out << ",grid_momentum_difference_" << axis[a];
+  out << ",checkerboard_velocity,grid_rms_velocity,hourglass_energy";
   out << '\n' << std::setprecision(12);
   for (const auto& s : samples) {
     const double total = s.kinetic_energy + s.strain_energy;
@@ -30,6 +32,8 @@ std::string History::csv() const {
       for (int a = 0; a < dim; ++a) out << ',' << s.body_com_velocity[b][a];
       for (int a = 0; a < dim; ++a) out << ',' << s.body_com_position[b][a];
     }
+    for (int a = 0; a < dim; ++a) out << ',' << s.grid_momentum_difference[a];
+    out << ',' << s.checkerboard_velocity << ',' << s.grid_rms_velocity << ',' << s.hourglass_energy;
     out << '\n';
   }
   return out.str();

@@ -16,6 +16,9 @@ struct HistorySample {
   std::array<double, 3> momentum{}, external_impulse{};
   double min_jacobian = 1.0;
   double rms_velocity_change = 0.0;
+  // Grid diagnostics (Gong 2015 extraction A18, A19; analysis/grid_modes.hpp, Simulation)
+  std::array<double, 3> grid_momentum_difference{};
+  double checkerboard_velocity = 0.0, grid_rms_velocity = 0.0, hourglass_energy = 0.0;
   std::vector<double> body_kinetic, body_strain, body_mass;
   std::vector<std::array<double, 3>> body_momentum, body_com_velocity, body_com_position;
 };

@@ -45,9 +45,10 @@ struct ManufacturedSolution {
 struct MmsOptions {
   int dim = 1;  // 1: the bar (§4.5); 2: the axis-aligned square (§4.7)
   ShapeKind shape = ShapeKind::Linear;
-  double amplitude = 1e-4;     // G
-  int particles_per_cell = 2;  // per direction, cell-centred (extraction A1, A2)
-  double end_time = 0.02;      // T: one period (A9)
+  Mapping mapping = Mapping::MPM;  // impm: Gong ch. 5; mls_velocity with cpdi1: improved CPDI (§6.6)
+  double amplitude = 1e-4;         // G
+  int particles_per_cell = 2;      // per direction, cell-centred (extraction A1, A2)
+  double end_time = 0.02;          // T: one period (A9)
   int threads = 1;
   // Zero the constrained components of the old node velocity too (extraction A24, Gong's loop);
   // false: matpoint's default (Nairn 2026), where the FLIP increment carries the wall reaction.
@@ -98,12 +99,21 @@ struct OrderExpectation {
   int from_cells = 8, to_cells = 64;  // the fit range (cells per direction); skipped if < 2 runs in it
 };
 
+/// An acceptance threshold on an error value at one resolution (e.g. extraction T7's E_stress(1/64)).
+struct ErrorLimit {
+  std::string quantity;
+  int cells = 64;
+  double below = 0;
+  std::string source;
+};
+
 struct VerificationCase {
   std::string name;     // e.g. "mms-1d/linear/G=0.0001"
   std::string problem;  // "mms-1d" or "mms-2d"
   MmsOptions options;
   std::vector<int> cells;  // resolutions (cells per direction)
   std::vector<OrderExpectation> expectations;
+  std::vector<ErrorLimit> error_limits;
 };
 
 /// One check of the report: {name, method, measured, expected, tolerance, pass} (+ source):
@@ -129,15 +139,27 @@ std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, double a
 /// The built-in suite: short resolutions for CI, or the papers' (`full`).
 std::vector<VerificationCase> verification_suite(bool full);
 
-/// A case for a problem name ("mms-1d", "mms-2d") with a chosen basis and amplitude.
-VerificationCase make_case(const std::string& problem, ShapeKind shape, double amplitude, bool full);
+/// A case for a problem name ("mms-1d", "mms-2d") with a chosen basis, mapping and amplitude.
+VerificationCase make_case(const std::string& problem, ShapeKind shape, double amplitude, bool full,
+                           Mapping mapping = Mapping::MPM);
+
+/// The expectations of extraction §10 for IMPM (T7, T8, T11) and improved CPDI (T12-like, T14).
+std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, Mapping mapping, double amplitude);
+
+/// Cross-method checks (extraction T14, T15): at the resolutions h = 1/512, 1/1024, 1/2048 present
+/// in both, the stress error of improved CPDI and of IMPM is below CPDI's (1-D, same amplitude).
+std::vector<VerificationCheck> comparison_checks(const std::vector<VerificationOutcome>& outcomes);
+
+/// The label of a method: the shape name, "impm" or "improved-cpdi" (cpdi1/cpdi2 + MLS velocity).
+std::string method_name(ShapeKind shape, Mapping mapping);
 
 /// Runs every resolution of a case; `on_run` (optional) is called after each.
 VerificationOutcome run_case(const VerificationCase& c,
                              const std::function<void(const MmsResult&)>& on_run = {});
 
-/// {name, method, measured, expected, tolerance, pass, source} for every check.
-nlohmann::json checks_json(const std::vector<VerificationOutcome>& outcomes);
+/// {name, method, measured, expected, tolerance, pass, source} for every check (and `extra`).
+nlohmann::json checks_json(const std::vector<VerificationOutcome>& outcomes,
+                           const std::vector<VerificationCheck>& extra = {});
 
 const char* shape_name(ShapeKind shape);
 

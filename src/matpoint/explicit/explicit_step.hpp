@@ -12,6 +12,7 @@
 #include "matpoint/explicit/fmpm.hpp"
 #include "matpoint/explicit/gather.hpp"
 #include "matpoint/explicit/grid_update.hpp"
+#include "matpoint/explicit/mls_mapping.hpp"
 #include "matpoint/explicit/scatter.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/particles/generators.hpp"
@@ -26,7 +27,8 @@ class ExplicitStepper {
   /// Multimaterial contact: one velocity field per body or material (field_stencils.hpp).
   static constexpr bool kFields = requires { Stencils::multi_field; };
 
-  explicit ExplicitStepper(Simulation<D>& sim) : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm) {
+  explicit ExplicitStepper(Simulation<D>& sim)
+      : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm), mls_(sim.solver.mls) {
     velocity_.resize(sim.fields.mass.size());
     if constexpr (kFields) set_up_fields();
     for (std::size_t p = 0; p < sim.particles.size(); ++p)
@@ -92,6 +94,7 @@ class ExplicitStepper {
   /// The grid of the transfers: grid.node_count covers every field's nodes.
   [[nodiscard]] const Grid<D>& field_grid() const { return grid_; }
   [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
+  [[nodiscard]] const MlsStatistics& mls_statistics() const { return mls_.statistics(); }
 
  private:
   template <unsigned What>
@@ -99,16 +102,46 @@ class ExplicitStepper {
     const std::vector<Vec<D>>* body = nullptr;
     if constexpr ((What & kScatterForce) != 0)
       if (s_.body_force) body = &evaluate_body_force();
-    scatter_to_grid<What>(grid_, stencils_, s_.particles, s_.gravity, s_.fields, workspace_,
-                          static_cast<const std::vector<Vec<D>>*>(nullptr), body);
+    if (s_.solver.mapping == Mapping::MPM)
+      scatter_to_grid<What>(grid_, stencils_, s_.particles, s_.gravity, s_.fields, workspace_,
+                            static_cast<const std::vector<Vec<D>>*>(nullptr), body);
+    else
+      scatter_mls<What>(body);
     if constexpr ((What & kScatterMass) != 0)
       if (s_.conditions.has_walls()) s_.conditions.select_wall_nodes(s_.time, s_.fields.mass, s_.mass_floor);
+    if constexpr ((What & kScatterMomentum) != 0) record_momentum_difference();
     if constexpr (kFields && (What & kScatterMomentum) != 0) {  // task 1.a (and 4.b): lumped contact on p
       if constexpr ((What & kScatterMass) != 0)
         s_.contact.prepare(grid_, stencils_, s_.particles, s_.fields.mass);
       s_.contact.set_rigid(s_.fields.mass, s_.fields.momentum, s_.time, /*momentum=*/true);
       s_.contact.apply_lumped(s_.fields.mass, s_.fields.momentum, /*momentum=*/true);
     }
+  }
+
+  /// Gong 2015 §5.4 (IMPM): mass and forces by cell quadrature, velocity by MLS; §6.6 (improved
+  /// CPDI, mapping mls_velocity): mass and forces through the stencils, velocity by MLS.
+  template <unsigned What>
+  void scatter_mls(const std::vector<Vec<D>>* body) {
+    constexpr unsigned kMassForce = What & (kScatterMass | kScatterForce);
+    mls_.bin(s_.grid, s_.particles);
+    if constexpr (kMassForce != 0) {
+      if (s_.solver.mapping == Mapping::IMPM)
+        mls_.template cell_quadrature<(What & kScatterMass) != 0, (What & kScatterForce) != 0>(
+            s_.grid, s_.particles, s_.gravity, body, s_.fields);
+      else
+        scatter_to_grid<kMassForce>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields, workspace_,
+                                    static_cast<const std::vector<Vec<D>>*>(nullptr), body);
+    }
+    if constexpr ((What & kScatterMomentum) != 0)
+      mls_.node_momentum(s_.grid, s_.particles, s_.fields.mass, s_.mass_floor, s_.fields.momentum);
+  }
+
+  void record_momentum_difference() {
+    Vec<D> grid = Vec<D>::Zero(), particles = Vec<D>::Zero();
+    for (const auto& p : s_.fields.momentum) grid += p;
+    for (std::size_t p = 0; p < s_.particles.size(); ++p)
+      particles += s_.particles.mass[p] * s_.particles.v[p];
+    s_.grid_momentum_difference = grid - particles;
   }
 
   void set_up_fields() {
@@ -247,6 +280,7 @@ class ExplicitStepper {
   ScatterWorkspace<D> workspace_;
   std::vector<Vec<D>> velocity_;  // scratch node velocities for USF / MUSL
   FmpmLoop<D> fmpm_;
+  MlsMapping<D> mls_;
   bool fmpm_now_ = false;     // this step runs the FMPM loop
   double fmpm_period_ = 0.0;  // periodic FMPM by time or Courant units
   double next_fmpm_time_ = 0.0;

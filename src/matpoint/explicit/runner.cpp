@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "matpoint/analysis/diagnostics.hpp"
+#include "matpoint/analysis/grid_modes.hpp"
 #include "matpoint/analysis/history.hpp"
 #include "matpoint/analysis/measures_eval.hpp"
 #include "matpoint/core/errors.hpp"
@@ -52,6 +53,11 @@ template <int D> HistorySample sample(const Simulation<D>& sim, int body_count) 
   s.body_kinetic = d.body_kinetic;
   s.body_strain = d.body_strain;
   s.body_mass = d.body_mass;
+  s.grid_momentum_difference = pad<D>(sim.grid_momentum_difference);
+  const GridModes modes = measure_grid_modes(sim.grid, sim.fields.mass, sim.fields.velocity_new);
+  s.checkerboard_velocity = modes.checkerboard_velocity;
+  s.grid_rms_velocity = modes.rms_velocity;
+  s.hourglass_energy = modes.hourglass_energy;
   for (int b = 0; b < body_count; ++b) {
     s.body_momentum.push_back(pad<D>(d.body_momentum[b]));
     s.body_com_velocity.push_back(pad<D>(Vec<D>(d.body_momentum[b] / std::max(d.body_mass[b], 1e-300))));
@@ -202,6 +208,10 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
     if (stats.passes > 0 && sim.step > 0 && other > 0)
       s["fmpm_pass_cost_fraction"] = (stats.seconds / static_cast<double>(stats.passes)) /
                                      (other / static_cast<double>(sim.step));
+  }
+  if (spec.solver.mapping != Mapping::MPM) {  // Gong 2015 extraction A16: Shepard fallbacks, counted
+    s["mls_reconstructions"] = stepper.mls_statistics().evaluations;
+    s["mls_fallbacks"] = stepper.mls_statistics().fallbacks;
   }
   s["outputs"] = outputs;
   s["initial"] = energies_json(history.samples.front(), D);

@@ -47,6 +47,9 @@ struct Simulation {
   long step = 0;
   double external_work = 0.0;                // gravity + moving walls, accumulated
   Vec<D> external_impulse = Vec<D>::Zero();  // gravity + grid conditions, accumulated
+  // sum_i p_i - sum_p M_p V_p at the last momentum transfer: zero up to round-off with the
+  // mass-weighted mapping, not with the MLS velocity of IMPM (Gong 2015 extraction A19).
+  Vec<D> grid_momentum_difference = Vec<D>::Zero();
 };
 
 /// Grid ghost layers needed by a basis.

@@ -202,6 +202,12 @@ constexpr std::array<Named<ShapeKind>, 9> kShapeKinds{{{"linear", ShapeKind::Lin
                                                        {"cpdi2", ShapeKind::CPDI2},
                                                        {"b2gimp", ShapeKind::B2GIMP},
                                                        {"b2cpdi", ShapeKind::B2CPDI}}};
+constexpr std::array<Named<Mapping>, 3> kMappings{
+    {{"mpm", Mapping::MPM}, {"impm", Mapping::IMPM}, {"mls_velocity", Mapping::MlsVelocity}}};
+constexpr std::array<Named<CellQuadrature>, 2> kCellQuadratures{
+    {{"cell_centre", CellQuadrature::Centre}, {"gauss_2x2", CellQuadrature::Gauss2}}};
+constexpr std::array<Named<CellVolume>, 2> kCellVolumes{
+    {{"cell", CellVolume::Full}, {"particle_fraction", CellVolume::ParticleFraction}}};
 constexpr std::array<Named<DeformationUpdate>, 2> kDeformationUpdates{
     {{"exponential", DeformationUpdate::Exponential}, {"linear", DeformationUpdate::Linear}}};
 
@@ -521,9 +527,10 @@ class SpecReader {
     read_bodies(top.required("bodies"));
     read_conditions(top.optional("boundary_conditions"));
     read_loads(Object(top.optional("loads"), {"gravity"}));
-    read_solver(Object(top.required("solver"),
-                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
-                        "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance"}));
+    read_solver(
+        Object(top.required("solver"),
+               {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape", "mapping",
+                "mls", "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance"}));
     read_output(
         Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields"}));
     read_checks(top.optional("checks"));
@@ -1063,6 +1070,7 @@ class SpecReader {
     else if (flip_fraction.present() && (transfer || !s.has("transfer")))
       flip_fraction.fail("no flip_fraction unless transfer is \"blend\"");
     set_if(out.shape, s.optional("shape").choice(kShapeKinds));
+    read_mapping(s, out);
     set_if(out.deformation_update, s.optional("deformation_update").choice(kDeformationUpdates));
     out.dt = s.optional("dt").number(kPositive);
     const Value courant = s.optional("courant");
@@ -1073,6 +1081,30 @@ class SpecReader {
     set_if(out.end_time, s.required("end_time").number(kPositive));
     set_if(out.max_steps, s.optional("max_steps").integer(0));
     set_if(out.mass_tolerance, s.optional("mass_tolerance").number({0, 1, false, true}));
+  }
+
+  /// solver.mapping and solver.mls: Gong 2015's IMPM (§5.4) and MLS velocity mapping (§6.6).
+  void read_mapping(const Object& s, SolverSpec& out) const {
+    const Value mapping = s.optional("mapping");
+    set_if(out.mapping, mapping.choice(kMappings));
+    const Value mls_value = s.optional("mls");
+    if (out.mapping == Mapping::MPM) {
+      if (mls_value.present()) mls_value.fail("no mls unless mapping is \"impm\" or \"mls_velocity\"");
+      return;
+    }
+    if (out.mapping == Mapping::IMPM && out.shape != ShapeKind::Linear)
+      mapping.fail(
+          "\"impm\" with shape \"linear\" (the cell quadrature uses the bilinear N_i), or "
+          "\"mls_velocity\" for the other shapes");
+    if (out.transfer == VelocityTransfer::FMPM || out.transfer == VelocityTransfer::XPIC)
+      mapping.fail("\"mpm\" with transfer \"fmpm\" or \"xpic\" (their passes re-map the momentum by mass)");
+    const Object mls(mls_value, {"degree", "quadrature", "cell_volume"});
+    set_if(out.mls.degree, mls.optional("degree").integer(0, 1));
+    for (const char* key : {"quadrature", "cell_volume"})
+      if (out.mapping != Mapping::IMPM && mls.has(key))
+        mls.optional(key).fail(std::string("no ") + key + " unless mapping is \"impm\"");
+    set_if(out.mls.quadrature, mls.optional("quadrature").choice(kCellQuadratures));
+    set_if(out.mls.cell_volume, mls.optional("cell_volume").choice(kCellVolumes));
   }
 
   /// solver.fmpm (transfer "fmpm") or solver.xpic (transfer "xpic"): Nairn 2026 §2.2-3.4.
@@ -1306,6 +1338,7 @@ class SpecReader {
       v.fail("no contact with fmpm.recursion \"binomial\" (eq. 4 has no per-increment contact step)");
     if (s.shape == ShapeKind::CPDI2)
       v.fail("no contact with solver.shape \"cpdi2\" (tracked corners); use \"cpdi1\"");
+    if (s.mapping != Mapping::MPM) v.fail("no contact with solver.mapping other than \"mpm\"");
   }
 
   Issues& issues_;

@@ -118,6 +118,19 @@ struct FmpmSpec {
   double period_value = 0.0;      // Courant units C_X, a step count, or a time
 };
 
+/// Particle-to-grid mapping (docs/input.md#solver, docs/theory/impm.md): mass-weighted MPM; Gong
+/// 2015's IMPM (§5.4: MLS velocity to the nodes, MLS density/stress/body force to cell points,
+/// cell quadrature); or only the MLS velocity (with a CPDI shape: improved CPDI, §6.6).
+enum class Mapping { MPM, IMPM, MlsVelocity };
+enum class CellQuadrature { Centre, Gauss2 };      // one point (eqs. 5.9-5.14), or 2^D Gauss points (A18)
+enum class CellVolume { Full, ParticleFraction };  // Omega_c = cell volume (as printed), or sum of V_p (A17)
+
+struct MlsSpec {
+  int degree = 1;  // 1: linear basis (Gong's "second-order MLS"), 0: Shepard (extraction A14)
+  CellQuadrature quadrature = CellQuadrature::Centre;
+  CellVolume cell_volume = CellVolume::Full;
+};
+
 struct SolverSpec {
   UpdateScheme scheme = UpdateScheme::MUSL;  // see docs/input.md: robust with FLIP, energy within 0.1 % in two-disks
   VelocityTransfer transfer = VelocityTransfer::FLIP;
@@ -125,6 +138,8 @@ struct SolverSpec {
   double flip_fraction = 1.0;   // Blend: V = f V_FLIP + (1 - f) V_PIC
   FmpmSpec fmpm;                // transfer fmpm or xpic
   ShapeKind shape = ShapeKind::Linear;
+  Mapping mapping = Mapping::MPM;
+  MlsSpec mls;  // mapping impm or mls_velocity
   DeformationUpdate deformation_update = DeformationUpdate::Exponential;
   std::optional<double> dt;  // fixed time step, or
   double courant = 0.5;      // Courant number with the largest material wave speed
