@@ -12,6 +12,7 @@ template <int D> Diagnostics<D> measure_diagnostics(const Simulation<D>& sim, in
   d.body_strain.assign(body_count, 0.0);
   d.body_mass.assign(body_count, 0.0);
   d.body_momentum.assign(body_count, Vec<D>::Zero());
+  d.body_com_position.assign(body_count, Vec<D>::Zero());
   d.min_jacobian = ps.size() ? ps.F[0].determinant() : 1.0;
   d.max_jacobian = d.min_jacobian;
   for (std::size_t p = 0; p < ps.size(); ++p) {  // serial: output times only, and deterministic
@@ -19,6 +20,7 @@ template <int D> Diagnostics<D> measure_diagnostics(const Simulation<D>& sim, in
     d.body_kinetic[b] += 0.5 * ps.mass[p] * ps.v[p].squaredNorm();
     d.body_momentum[b] += ps.mass[p] * ps.v[p];
     d.body_mass[b] += ps.mass[p];
+    d.body_com_position[b] += ps.mass[p] * ps.x[p];
     const double J = ps.F[p].determinant();
     d.min_jacobian = std::min(d.min_jacobian, J);
     d.max_jacobian = std::max(d.max_jacobian, J);
@@ -31,6 +33,7 @@ template <int D> Diagnostics<D> measure_diagnostics(const Simulation<D>& sim, in
     d.kinetic_energy += d.body_kinetic[b];
     d.strain_energy += d.body_strain[b];
     d.momentum += d.body_momentum[b];
+    if (d.body_mass[b] > 0.0) d.body_com_position[b] /= d.body_mass[b];
   }
   return d;
 }

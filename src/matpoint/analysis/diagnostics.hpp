@@ -15,6 +15,7 @@ template <int D> struct Diagnostics {
   double rms_velocity_change = 0.0;  // sqrt(mean_p |V_p - V_p(0)|^2)
   std::vector<double> body_kinetic, body_strain, body_mass;
   std::vector<Vec<D>> body_momentum;
+  std::vector<Vec<D>> body_com_position;  // sum M_p X_p / sum M_p
 };
 
 template <int D> Diagnostics<D> measure_diagnostics(const Simulation<D>& sim, int body_count);

@@ -12,6 +12,7 @@ struct HistorySample {
   double time = 0.0;
   long step = 0;
   double kinetic_energy = 0.0, strain_energy = 0.0, external_work = 0.0;
+  double friction_work = 0.0;  // energy dissipated by contact friction (docs/theory/contact.md)
   std::array<double, 3> momentum{}, external_impulse{};
   double min_jacobian = 1.0;
   double rms_velocity_change = 0.0;
@@ -19,7 +20,7 @@ struct HistorySample {
   std::array<double, 3> grid_momentum_difference{};
   double checkerboard_velocity = 0.0, grid_rms_velocity = 0.0, hourglass_energy = 0.0;
   std::vector<double> body_kinetic, body_strain, body_mass;
-  std::vector<std::array<double, 3>> body_momentum, body_com_velocity;
+  std::vector<std::array<double, 3>> body_momentum, body_com_velocity, body_com_position;
 };
 
 struct History {

@@ -11,9 +11,10 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 15> kMeasures{{
+inline constexpr std::array<MeasureInfo, 16> kMeasures{{
     {"max_relative_energy_error",
-     "max over output times of |E(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy"},
+     "max over output times of |E(t) + D(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy, "
+     "D = friction work (contact)"},
     {"max_relative_momentum_error",
      "max over output times of |P(t) - P(0) - I_ext(t)| / sum_p m_p |V_p(0)| (I_ext: impulse of gravity)"},
     {"min_jacobian", "smallest det F of any particle at any output time"},
@@ -25,7 +26,9 @@ inline constexpr std::array<MeasureInfo, 15> kMeasures{{
     {"late_kinetic_energy_peak_change",
      "max K over the outputs in the last tenth of the run / K(0) - 1: for a periodic motion whose kinetic "
      "energy peaks in that window, the energy lost without the phase error of sampling at one time"},
-    {"total_energy_change", "(E(end) - W_ext(end)) / E(0) - 1: the signed relative change of total energy"},
+    {"total_energy_change",
+     "(E(end) + D(end) - W_ext(end)) / E(0) - 1: the signed relative change of total energy (D = friction "
+     "work of contact, 0 without contact)"},
     {"final_com_velocity_x", "x velocity of the centre of mass of all bodies at the last output"},
     {"final_com_velocity_y", "y velocity of the centre of mass of all bodies at the last output"},
     {"final_com_velocity_z", "z velocity of the centre of mass of all bodies at the last output"},
@@ -41,6 +44,11 @@ inline constexpr std::array<MeasureInfo, 15> kMeasures{{
     {"shock_plateau_stress",
      "at the end of the run, the median of -sigma_xx over the particles where -sigma_xx is at least half its "
      "largest value: the plateau behind a compressive shock moving along x (examples/shock-interface)"},
+    {"sliding_block_displacement_error",
+     "max over the outputs in the second half of the run of |d(t) - d_exact(t)| / s(t): body 0 slides on a "
+     "rigid floor normal to y with gravity (g sin theta, -g cos theta) and Coulomb friction mu; d = x shift "
+     "of its centre of mass, d_exact = 1/2 g (sin theta - mu cos theta) t^2 when positive (sliding), else 0 "
+     "(sticking); s = d_exact when sliding, 1/2 g sin theta t^2 (the frictionless slide) when sticking"},
 }};
 
 [[nodiscard]] constexpr bool is_known_measure(std::string_view name) {

@@ -17,7 +17,7 @@ double max_relative_energy_error(const History& h) {
   const double e0 = s0.kinetic_energy + s0.strain_energy;
   double worst = 0.0;
   for (const auto& s : h.samples) {
-    const double drift = s.kinetic_energy + s.strain_energy - s.external_work - e0;
+    const double drift = s.kinetic_energy + s.strain_energy + s.friction_work - s.external_work - e0;
     worst = std::max(worst, std::abs(drift) / e0);
   }
   return worst;
@@ -89,6 +89,24 @@ double fitted_com_acceleration_x(const History& h) {
   return (n * stv - st * sv) / (n * stt - st * st);
 }
 
+/// The block on a rigid incline (examples/incline-friction): gravity (g sin theta, -g cos theta).
+double sliding_block_error(const Spec& spec, const History& h) {
+  if (h.samples.size() < 2) return kNaN;
+  const double gx = spec.loads.gravity[0], gy = spec.loads.gravity[1];
+  const double mu = spec.contact.law.law == ContactLaw::Coulomb ? spec.contact.law.friction : 0.0;
+  const double slide = std::max(0.0, gx - mu * std::abs(gy));  // g (sin theta - mu cos theta)
+  const double x0 = h.samples.front().body_com_position[0][0];
+  const double t_end = h.samples.back().time;
+  double worst = 0.0;
+  for (const auto& s : h.samples) {
+    if (s.time < 0.5 * t_end) continue;
+    const double exact = 0.5 * slide * s.time * s.time;
+    const double scale = slide > 0.0 ? exact : 0.5 * gx * s.time * s.time;
+    worst = std::max(worst, std::abs(s.body_com_position[0][0] - x0 - exact) / scale);
+  }
+  return worst;
+}
+
 }  // namespace
 
 double shock_plateau_stress(std::vector<double> stress_xx) {
@@ -131,7 +149,7 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
     const auto& last = history.samples.back();
     if (name == "kinetic_energy_change") return last.kinetic_energy / first.kinetic_energy - 1.0;
     const double e0 = first.kinetic_energy + first.strain_energy;
-    return (last.kinetic_energy + last.strain_energy - last.external_work) / e0 - 1.0;
+    return (last.kinetic_energy + last.strain_energy + last.friction_work - last.external_work) / e0 - 1.0;
   }
   if (name == "mean_rms_velocity_change") {
     if (history.samples.size() < 2) return kNaN;
@@ -150,6 +168,7 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
   }
   if (name == "vibrating_bar_com_velocity_error") return bar_velocity_error(spec, history);
   if (name == "vibrating_bar_period_error") return bar_period_error(spec, history);
+  if (name == "sliding_block_displacement_error") return sliding_block_error(spec, history);
   return kNaN;
 }
 

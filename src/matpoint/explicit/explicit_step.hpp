@@ -8,6 +8,7 @@
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/deformation.hpp"
+#include "matpoint/explicit/field_stencils.hpp"
 #include "matpoint/explicit/fmpm.hpp"
 #include "matpoint/explicit/gather.hpp"
 #include "matpoint/explicit/grid_update.hpp"
@@ -23,10 +24,16 @@ class ExplicitStepper {
  public:
   /// Particles are re-sorted by cell every `sort_interval` steps (memory locality only).
   static constexpr long sort_interval = 10;
+  /// Multimaterial contact: one velocity field per body or material (field_stencils.hpp).
+  static constexpr bool kFields = requires { Stencils::multi_field; };
 
-  explicit ExplicitStepper(Simulation<D>& sim) : s_(sim), fmpm_(sim.solver.fmpm), mls_(sim.solver.mls) {
-    velocity_.resize(sim.grid.node_count);
-    for (double m : sim.particles.mass) total_mass_ += m;
+  explicit ExplicitStepper(Simulation<D>& sim)
+      : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm), mls_(sim.solver.mls) {
+    velocity_.resize(sim.fields.mass.size());
+    if constexpr (kFields) set_up_fields();
+    for (std::size_t p = 0; p < sim.particles.size(); ++p)
+      if (sim.rigid_material.empty() || !sim.rigid_material[sim.particles.material[p]])
+        total_mass_ += sim.particles.mass[p];
     const FmpmSpec& f = sim.solver.fmpm;
     if (f.period == FmpmPeriod::Courant)
       fmpm_period_ = f.period_value * sim.grid.min_cell_size() / max_wave_speed(sim);
@@ -84,6 +91,8 @@ class ExplicitStepper {
   }
 
   [[nodiscard]] const Stencils& stencils() const { return stencils_; }
+  /// The grid of the transfers: grid.node_count covers every field's nodes.
+  [[nodiscard]] const Grid<D>& field_grid() const { return grid_; }
   [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
   [[nodiscard]] const MlsStatistics& mls_statistics() const { return mls_.statistics(); }
 
@@ -107,13 +116,19 @@ class ExplicitStepper {
     if constexpr ((What & kScatterForce) != 0)
       if (s_.body_force) body = &evaluate_body_force();
     if (s_.solver.mapping == Mapping::MPM)
-      scatter_to_grid<What>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields, workspace_,
+      scatter_to_grid<What>(grid_, stencils_, s_.particles, s_.gravity, s_.fields, workspace_,
                             static_cast<const std::vector<Vec<D>>*>(nullptr), body);
     else
       scatter_mls<What>(body);
     if constexpr ((What & kScatterMass) != 0)
       if (s_.conditions.has_walls()) s_.conditions.select_wall_nodes(s_.time, s_.fields.mass, s_.mass_floor);
     if constexpr ((What & kScatterMomentum) != 0) record_momentum_difference();
+    if constexpr (kFields && (What & kScatterMomentum) != 0) {  // task 1.a (and 4.b): lumped contact on p
+      if constexpr ((What & kScatterMass) != 0)
+        s_.contact.prepare(grid_, stencils_, s_.particles, s_.fields.mass);
+      s_.contact.set_rigid(s_.fields.mass, s_.fields.momentum, s_.time, /*momentum=*/true);
+      s_.contact.apply_lumped(s_.fields.mass, s_.fields.momentum, /*momentum=*/true);
+    }
   }
 
   /// Gong 2015 §5.4 (IMPM): mass and forces by cell quadrature, velocity by MLS; §6.6 (improved
@@ -140,6 +155,38 @@ class ExplicitStepper {
     for (std::size_t p = 0; p < s_.particles.size(); ++p)
       particles += s_.particles.mass[p] * s_.particles.v[p];
     s_.grid_momentum_difference = grid - particles;
+  }
+
+  void set_up_fields() {
+    stencils_.field_of = s_.field_of;
+    stencils_.by_material = s_.fields_by_material;
+    stencils_.field_nodes = s_.grid.node_count;
+    grid_.node_count = static_cast<Index>(s_.fields.mass.size());
+    fmpm_.set_increment_correction(
+        [this](std::vector<Vec<D>>& dv) { s_.contact.correct_increment(s_.fields.mass, dv); });
+  }
+
+  /// Task 3.a: lumped contact on v+(1), then the conditions again where contact moved a
+  /// constrained node, and the rigid fields' velocities; a = (v+ - v) / dt includes it all.
+  void contact_after_update(double dt, double t_new, Vec<D>& impulse, double& work) {
+    auto& f = s_.fields;
+    s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
+    s_.contact.apply_lumped(f.mass, f.velocity_new, false, &s_.friction_work);
+    s_.conditions.apply(f.velocity_new, t_new, &f.mass, &impulse, &work);
+    s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
+    const auto n = static_cast<std::ptrdiff_t>(f.mass.size());
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum)
+    for (std::ptrdiff_t i = 0; i < n; ++i) f.acceleration[i] = (f.velocity_new[i] - f.velocity[i]) / dt;
+  }
+
+  /// Rigid particles keep their prescribed velocity exactly and no velocity gradient.
+  void move_rigid_particles(double t_new) {
+    auto& ps = s_.particles;
+    for (std::size_t p = 0; p < ps.size(); ++p)
+      if (s_.rigid_material[ps.material[p]]) {
+        ps.v[p] = s_.contact.rigid_velocity(stencils_.field(p), t_new);
+        ps.L[p].setZero();
+      }
   }
 
   /// B(X_p, t) of every particle at the start of the step (Gong 2015 extraction A7).
@@ -177,13 +224,14 @@ class ExplicitStepper {
     double work = 0.0;
     update_grid_velocities(s_.fields, dt, s_.mass_floor, s_.conditions, t_new, impulse, work,
                            s_.solver.constrain_old_velocity);
+    if constexpr (kFields) contact_after_update(dt, t_new, impulse, work);
     if (fmpm_now_) {
-      fmpm_.run(s_.grid, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new,
+      fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new,
                 s_.fields.velocity_new, workspace_, &impulse, &work);
     } else if (s_.solver.transfer == VelocityTransfer::XPIC) {
       auto& vx = s_.fields.velocity_xpic;  // the series on the old lumped velocities (§1.5)
       vx = s_.fields.velocity;
-      fmpm_.run(s_.grid, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new, vx,
+      fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new, vx,
                 workspace_);
       for (std::size_t i = 0; i < vx.size(); ++i) vx[i] += s_.fields.acceleration[i] * dt;
     }
@@ -196,9 +244,10 @@ class ExplicitStepper {
     if (transfer.kind == VelocityTransfer::FMPM && !fmpm_now_)
       transfer.kind = VelocityTransfer::FLIP;  // periodic
     const auto result =
-        gather_and_move(s_.grid, stencils_, s_.fields, s_.particles, transfer, dt, with_gradient, s_.gravity);
+        gather_and_move(grid_, stencils_, s_.fields, s_.particles, transfer, dt, with_gradient, s_.gravity);
     if constexpr (requires { stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt); })
       stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt);  // CPDI2 corners (Gong 2015 eq. (6.28))
+    if constexpr (kFields) move_rigid_particles(s_.time + dt);
     s_.external_work += result.gravity_work;
     if (result.first_outside >= 0) fail_outside(result.first_outside);
     if (result.first_too_fast >= 0) {
@@ -215,9 +264,9 @@ class ExplicitStepper {
     lumped_velocity(s_.fields, s_.mass_floor, velocity_);
     s_.conditions.apply(velocity_, t);
     if (fmpm_now_)
-      fmpm_.run(s_.grid, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t, velocity_,
+      fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t, velocity_,
                 workspace_);
-    gather_velocity_gradient(s_.grid, stencils_, velocity_, s_.particles);
+    gather_velocity_gradient(grid_, stencils_, velocity_, s_.particles);
     update_strain(dt);
   }
 
@@ -258,6 +307,7 @@ class ExplicitStepper {
 
   Simulation<D>& s_;
   Stencils stencils_;
+  Grid<D> grid_;  // s_.grid, with node_count over every field of a contact run
   ScatterWorkspace<D> workspace_;
   std::vector<Vec<D>> velocity_;  // scratch node velocities for USF / MUSL
   FmpmLoop<D> fmpm_;

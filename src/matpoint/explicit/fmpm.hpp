@@ -6,12 +6,13 @@
 // sum_p M_p S_pi U_p / m_i: two sweeps over the particle-node pairs instead of Table 1's double
 // loop over node pairs, with the step's stencils (no re-evaluation). Each increment then gets
 // the corrections of Table 1: blending (§3.3), zeroed velocity-condition directions (line (1),
-// Table 2), contact (line (2), reserved for the contact issue) and the dynamic stop (line (3), §3.4).
+// Table 2), contact (line (2), set_increment_correction) and the dynamic stop (line (3), §3.4).
 #pragma once
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "matpoint/explicit/scatter.hpp"
@@ -83,6 +84,12 @@ class FmpmLoop {
       next[i] = mass[i] > mass_floor ? Vec<D>((scratch_.momentum[i] / mass[i]).eval()) : Vec<D>::Zero();
   }
 
+  /// Line (2) of Table 1: a correction of every increment dv(l), l >= 2, after the conditions
+  /// (multimaterial contact, explicit/contact.hpp). None by default.
+  void set_increment_correction(std::function<void(std::vector<Vec<D>>&)> correction) {
+    correction_ = std::move(correction);
+  }
+
   [[nodiscard]] const FmpmStatistics& statistics() const { return statistics_; }
   void restore_statistics(const FmpmStatistics& statistics) { statistics_ = statistics; }
   [[nodiscard]] const FmpmSpec& spec() const { return spec_; }
@@ -103,7 +110,7 @@ class FmpmLoop {
       for (std::ptrdiff_t i = 0; i < nodes; ++i) prev_[i] = scale * (prev_[i] - next_[i]);  // A dv(l-1)
       if (spec_.boundary_method == FmpmBoundaryMethod::Incremental)
         conditions.zero_constrained(prev_, &mass, impulse, work, t);  // (1), with the walls' work
-        // (2): contact corrections of each increment plug in here (multimaterial contact issue).
+      if (correction_) correction_(prev_);                           // (2) contact (Net or Evolving)
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) v[i] += prev_[i];
       if (spec_.measure != FmpmMeasure::None && measure(mass, mass_floor, v) < spec_.limit) return l;  // (3)
@@ -172,6 +179,7 @@ class FmpmLoop {
   std::vector<Vec<D>> prev_, next_;  // dv(l - 1) and S+S dv(l - 1)
   std::vector<Vec<D>> gathered_;     // U_p
   GridFields<D> scratch_;            // only its momentum is used
+  std::function<void(std::vector<Vec<D>>&)> correction_;
 };
 
 }  // namespace matpoint

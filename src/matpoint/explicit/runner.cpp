@@ -49,6 +49,7 @@ template <int D> HistorySample sample(const Simulation<D>& sim, int body_count) 
   s.kinetic_energy = d.kinetic_energy;
   s.strain_energy = d.strain_energy;
   s.external_work = sim.external_work;
+  s.friction_work = sim.friction_work;
   s.momentum = pad<D>(d.momentum);
   s.external_impulse = pad<D>(sim.external_impulse);
   s.min_jacobian = d.min_jacobian;
@@ -64,6 +65,7 @@ template <int D> HistorySample sample(const Simulation<D>& sim, int body_count) 
   for (int b = 0; b < body_count; ++b) {
     s.body_momentum.push_back(pad<D>(d.body_momentum[b]));
     s.body_com_velocity.push_back(pad<D>(Vec<D>(d.body_momentum[b] / std::max(d.body_mass[b], 1e-300))));
+    s.body_com_position.push_back(pad<D>(d.body_com_position[b]));
   }
   return s;
 }
@@ -74,6 +76,7 @@ nlohmann::json energies_json(const HistorySample& s, int dim) {
           {"strain_energy", s.strain_energy},
           {"total_energy", s.kinetic_energy + s.strain_energy},
           {"external_work", s.external_work},
+          {"friction_work", s.friction_work},
           {"momentum", std::vector<double>(s.momentum.begin(), s.momentum.begin() + dim)}};
 }
 
@@ -348,28 +351,36 @@ template <int D, class Stencils> RunResult run_with(const Spec& spec, const RunO
   return result;
 }
 
+/// The basis's stencils, plain or (contact) shifted to each particle's velocity field.
+template <int D, class Base>
+RunResult run_with_fields(const Spec& spec, const RunOptions& options) {
+  if constexpr (D > 1)
+    if (spec.contact.enabled) return run_with<D, FieldStencils<D, Base>>(spec, options);
+  return run_with<D, Base>(spec, options);
+}
+
 template <int D> RunResult run_dim(const Spec& spec, const RunOptions& options) {
   switch (spec.solver.shape) {
     case ShapeKind::BSpline2:
-      return run_with<D, TensorStencils<D, QuadraticBSplineBasis>>(spec, options);
+      return run_with_fields<D, TensorStencils<D, QuadraticBSplineBasis>>(spec, options);
     case ShapeKind::BSpline3:
-      return run_with<D, TensorStencils<D, CubicBSplineBasis>>(spec, options);
+      return run_with_fields<D, TensorStencils<D, CubicBSplineBasis>>(spec, options);
     case ShapeKind::UGIMP:
-      return run_with<D, TensorStencils<D, UGimpBasis>>(spec, options);
+      return run_with_fields<D, TensorStencils<D, UGimpBasis>>(spec, options);
     case ShapeKind::CpGIMP:
-      return run_with<D, TensorStencils<D, CpGimpBasis>>(spec, options);
+      return run_with_fields<D, TensorStencils<D, CpGimpBasis>>(spec, options);
     case ShapeKind::B2GIMP:
-      return run_with<D, TensorStencils<D, B2GimpBasis>>(spec, options);
+      return run_with_fields<D, TensorStencils<D, B2GimpBasis>>(spec, options);
     case ShapeKind::CPDI1:
-      return run_with<D, CpdiStencils<D, HatKernel, CpdiDomain::Parallelogram>>(spec, options);
-    case ShapeKind::CPDI2:
+      return run_with_fields<D, CpdiStencils<D, HatKernel, CpdiDomain::Parallelogram>>(spec, options);
+    case ShapeKind::CPDI2:  // contact with tracked corners is refused by the input reader
       return run_with<D, CpdiStencils<D, HatKernel, CpdiDomain::Tracked>>(spec, options);
     case ShapeKind::B2CPDI:
-      return run_with<D, CpdiStencils<D, QuadraticKernel, CpdiDomain::Parallelogram>>(spec, options);
+      return run_with_fields<D, CpdiStencils<D, QuadraticKernel, CpdiDomain::Parallelogram>>(spec, options);
     case ShapeKind::Linear:
       break;
   }
-  return run_with<D, TensorStencils<D, LinearBasis>>(spec, options);
+  return run_with_fields<D, TensorStencils<D, LinearBasis>>(spec, options);
 }
 
 }  // namespace

@@ -57,6 +57,35 @@ int ghost_layers(ShapeKind shape) {
   return LinearBasis::ghost_layers;
 }
 
+namespace {
+
+/// One grid velocity field per body (or material), rigid fields with their prescribed velocity.
+template <int D>
+void set_up_contact(const Spec& spec, Simulation<D>& sim) {
+  const ContactSpec& c = spec.contact;
+  const auto fields = static_cast<int>(c.by_material ? spec.materials.size() : spec.bodies.size());
+  sim.has_contact = true;
+  sim.fields_by_material = c.by_material;
+  sim.field_of.resize(static_cast<std::size_t>(fields));
+  for (int f = 0; f < fields; ++f) sim.field_of[f] = f;
+  std::vector<std::vector<TimeFunction>> rigid(static_cast<std::size_t>(fields));
+  for (int f = 0; f < fields; ++f) {
+    const auto& m = spec.materials[c.by_material ? f : spec.bodies[f].material];
+    if (m.model == MaterialModel::Rigid)
+      rigid[f].assign(m.rigid_velocity.begin(), m.rigid_velocity.begin() + D);
+  }
+  sim.contact = MultiFieldContact<D>(c, fields, sim.grid.node_count, sim.grid.min_cell_size(), sim.mass_floor,
+                                     std::move(rigid));
+  sim.fields.resize(fields * sim.grid.node_count);
+  sim.conditions.replicate(fields);
+  for (std::size_t p = 0; p < sim.particles.size(); ++p) {  // rigid particles start at their velocity
+    const int f = c.by_material ? sim.particles.material[p] : sim.particles.body[p];
+    if (sim.contact.rigid(f)) sim.particles.v[p] = sim.contact.rigid_velocity(f, 0.0);
+  }
+}
+
+}  // namespace
+
 template <int D>
 Simulation<D> build_simulation(const Spec& spec) {
   Simulation<D> sim;
@@ -97,6 +126,10 @@ Simulation<D> build_simulation(const Spec& spec) {
   sim.solver = spec.solver;
   const double heaviest = *std::max_element(sim.particles.mass.begin(), sim.particles.mass.end());
   sim.mass_floor = spec.solver.mass_tolerance * heaviest;
+  sim.rigid_material.assign(spec.materials.size(), 0);
+  for (std::size_t m = 0; m < spec.materials.size(); ++m)
+    sim.rigid_material[m] = spec.materials[m].model == MaterialModel::Rigid ? 1 : 0;
+  if (spec.contact.enabled) set_up_contact(spec, sim);
   return sim;
 }
 

@@ -4,6 +4,7 @@
 #include <functional>
 #include <vector>
 
+#include "matpoint/explicit/contact.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/grid_fields.hpp"
 #include "matpoint/grid/velocity_conditions.hpp"
@@ -32,6 +33,15 @@ struct Simulation {
   /// manufactured solutions' eqs. (4.39), (4.46)). Empty (the default): gravity only, no cost.
   std::function<Vec<D>(const Vec<D>& X, double t)> body_force;
   std::vector<Vec<D>> body_force_values;  // scratch: B(X_p, t) by storage index, for the scatter
+
+  // Multimaterial contact (spec.contact): one grid velocity field per body (or material); `fields`
+  // then holds fields x grid.node_count nodes. field_of maps a body (or material) to its field.
+  bool has_contact = false;
+  MultiFieldContact<D> contact;
+  std::vector<int> field_of;
+  bool fields_by_material = false;
+  std::vector<char> rigid_material;  // by material: 1 for the rigid model
+  double friction_work = 0.0;        // kinetic energy removed by Coulomb friction, accumulated
 
   double time = 0.0;
   long step = 0;

@@ -52,21 +52,40 @@ VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpe
 }
 
 template <int D>
+void VelocityConditions<D>::replicate(int fields) {
+  const std::size_t single = entries_.size() / static_cast<std::size_t>(fields_);
+  entries_.resize(single);
+  for (int f = 1; f < fields; ++f)
+    for (std::size_t k = 0; k < single; ++k) {
+      Entry e = entries_[k];
+      e.node += f * grid_.node_count;
+      entries_.push_back(e);
+    }
+  fields_ = fields;
+}
+
+template <int D>
 void VelocityConditions<D>::select_wall_nodes(double t, const std::vector<double>& mass, double mass_floor) {
   wall_entries_.clear();
+  for (int f = 0; f < fields_; ++f) select_field_wall_nodes(t, mass, mass_floor, f * grid_.node_count);
+}
+
+template <int D>
+void VelocityConditions<D>::select_field_wall_nodes(double t, const std::vector<double>& mass,
+                                                    double mass_floor, Index offset) {
   for (const auto& w : walls_) {
     const int a = w.normal_axis;
     const double x_wall = w.wall_position + w.wall_velocity.integral(t);
     const double v_wall = w.wall_velocity(t);
     const double tol = 1e-9 * grid_.h[a];
     for (Index node = 0; node < grid_.node_count; ++node) {
-      if (!(mass[node] > mass_floor)) continue;
+      if (!(mass[offset + node] > mass_floor)) continue;
       const double x = grid_.node_position(node)[a];
       const bool controlled = w.material_below ? x >= x_wall - w.depth - tol : x <= x_wall + w.depth + tol;
       if (!controlled) continue;
       // v_i = v_wall + grad v (x_i - x_wall), grad v = v_wall / (x_wall - x_c) for a stretch about x_c
       const double value = w.stretch_about ? v_wall * (x - *w.stretch_about) / (x_wall - *w.stretch_about) : v_wall;
-      wall_entries_.push_back({node, a, value});
+      wall_entries_.push_back({offset + node, a, value});
     }
   }
 }

@@ -50,6 +50,10 @@ template <int D> class VelocityConditions {
   [[nodiscard]] bool has_walls() const { return !walls_.empty(); }
   [[nodiscard]] bool has_one_sided() const { return one_sided_; }
 
+  /// Multi-field (contact) runs: every condition holds on each of `fields` copies of the grid's
+  /// N nodes (field f at flat indices f N .. f N + N - 1), walls included.
+  void replicate(int fields);
+
   [[nodiscard]] std::size_t size() const { return entries_.size() + wall_entries_.size(); }
 
  private:
@@ -69,12 +73,15 @@ template <int D> class VelocityConditions {
     int axis;
     double value;
   };
+  void select_field_wall_nodes(double t, const std::vector<double>& mass, double mass_floor, Index offset);
+
   std::vector<Entry> entries_;
   std::vector<TimeFunction> functions_;
   std::vector<VelocityConditionSpec> walls_;
   std::vector<WallEntry> wall_entries_;  // this step's wall nodes
   bool one_sided_ = false;
   Grid<D> grid_;
+  int fields_ = 1;
 };
 
 }  // namespace matpoint

@@ -152,9 +152,18 @@ std::string_view name_of(const std::array<Named<T>, N>& options, T value) {
   return "?";
 }
 
-constexpr std::array<Named<MaterialModel>, 3> kModels{{{"linear_elastic", MaterialModel::LinearElastic},
+constexpr std::array<Named<MaterialModel>, 4> kModels{{{"linear_elastic", MaterialModel::LinearElastic},
                                                       {"neo_hookean", MaterialModel::NeoHookean},
-                                                      {"mie_gruneisen", MaterialModel::MieGruneisen}}};
+                                                      {"mie_gruneisen", MaterialModel::MieGruneisen},
+                                                      {"rigid", MaterialModel::Rigid}}};
+constexpr std::array<Named<ContactLaw>, 3> kContactLaws{{{"stick", ContactLaw::Stick},
+                                                         {"frictionless", ContactLaw::Frictionless},
+                                                         {"coulomb", ContactLaw::Coulomb}}};
+constexpr std::array<Named<ContactNormals>, 2> kContactNormals{
+    {{"mass_gradient", ContactNormals::MassGradient}, {"average", ContactNormals::Average}}};
+constexpr std::array<Named<ContactFmpmMethod>, 2> kContactFmpmMethods{
+    {{"net", ContactFmpmMethod::Net}, {"evolving", ContactFmpmMethod::Evolving}}};
+constexpr std::array<Named<bool>, 2> kContactFields{{{"bodies", false}, {"materials", true}}};
 constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
     {{"log_j", NeoHookeanVolumetric::LogJ}, {"half_j_squared", NeoHookeanVolumetric::HalfJSquared}}};
 constexpr std::array<Named<BodyShape>, 3> kShapes{
@@ -511,7 +520,7 @@ class SpecReader {
   Spec read(const json& root_json) {
     const Value root(&root_json, "", issues_, true);
     const Object top(root, {"title", "grid", "materials", "bodies", "boundary_conditions", "loads", "solver",
-                            "output", "checks"});
+                            "output", "checks", "contact"});
     if (!top.valid()) return std::move(spec_);
     set_if(spec_.title, top.optional("title").string());
     read_grid(Object(top.required("grid"), {"dim", "min", "max", "cell_size"}));
@@ -528,6 +537,7 @@ class SpecReader {
     read_output(Object(top.optional("output"),
                        {"every_steps", "every_time", "particles", "plots", "fields", "checkpoint"}));
     read_checks(top.optional("checks"));
+    read_contact(top.optional("contact"));
     if (grid_ok_) check_stencil_fits();
     if (issues_.empty()) check_step_count();
     return std::move(spec_);
@@ -607,7 +617,7 @@ class SpecReader {
 
   MaterialSpec read_material(const Value& v) {
     const Object m(v, {"name", "model", "density", "E", "nu", "lambda", "mu", "volumetric", "bulk_sound_speed",
-                       "hugoniot_slope", "gruneisen", "shear_modulus"});
+                       "hugoniot_slope", "gruneisen", "shear_modulus", "velocity"});
     MaterialSpec out;
     if (!m.valid()) {
       names_complete_ = false;
@@ -618,8 +628,13 @@ class SpecReader {
     set_if(out.model, model);
     set_if(out.density, m.required("density").number(kPositive));
     if (model == MaterialModel::MieGruneisen) return read_mie_gruneisen(m, out);
+    if (model == MaterialModel::Rigid) {
+      read_rigid(m, out);
+      return out;
+    }
     for (const char* key : {"bulk_sound_speed", "hugoniot_slope", "gruneisen", "shear_modulus"})
       if (m.has(key)) m.optional(key).fail(std::string("no \"") + key + "\" unless model is \"mie_gruneisen\"");
+    if (m.has("velocity")) m.optional("velocity").fail("no velocity unless model is \"rigid\"");
     read_elasticity(m, out);
     const Value volumetric = m.optional("volumetric");
     if (model == MaterialModel::LinearElastic && volumetric.present())
@@ -640,6 +655,25 @@ class SpecReader {
     // lambda + 2 mu / 3 = K = rho0 C0^2, so that lambda + 2 mu is the dilatational modulus
     out.lambda = out.density * out.bulk_sound_speed * out.bulk_sound_speed - 2.0 * out.mu / 3.0;
     return out;
+  }
+
+  /// A rigid material: only name, model, density and an optional prescribed velocity (one entry
+  /// per axis, each a number or {"table": [[t, v], ...]}; zero by default).
+  void read_rigid(const Object& m, MaterialSpec& out) const {
+    for (const char* key : {"E", "nu", "lambda", "mu", "volumetric"})
+      if (m.has(key)) m.optional(key).fail("no elastic constants for a rigid material");
+    const Value v = m.optional("velocity");
+    if (!v.present()) return;
+    const std::string expected = "an array of " + std::string(dim_ == 0 ? "1 to 3" : std::to_string(dim_)) +
+                                 " entries, each a number or {\"table\": [[t, v], ...]}";
+    const bool size_ok = v.get().is_array() && (dim_ == 0 ? !v.get().empty() && v.get().size() <= 3
+                                                          : v.get().size() == static_cast<std::size_t>(dim_));
+    if (!size_ok) {
+      v.fail(expected);
+      return;
+    }
+    for (std::size_t a = 0; a < v.get().size(); ++a)
+      if (auto f = read_time_function(v.element(a), expected)) out.rigid_velocity[a] = *f;
   }
 
   void read_material_name(const Value& v, MaterialSpec& out) {
@@ -1263,6 +1297,109 @@ class SpecReader {
       return;
     }
     check.measure = v.get().get<std::string>();
+  }
+
+  // --- contact (Nairn 2026 §3.2; docs/theory/contact.md) ---
+
+  void read_contact(const Value& v) {
+    const bool has_rigid = std::any_of(spec_.materials.begin(), spec_.materials.end(),
+                                       [](const MaterialSpec& m) { return m.model == MaterialModel::Rigid; });
+    if (!v.present()) {
+      if (has_rigid)
+        v.fail("a \"contact\" object (a rigid material moves its own velocity field, which needs contact)");
+      return;
+    }
+    const Object c(v, {"law", "friction", "normals", "separation", "fmpm_method", "fields", "pairs"});
+    if (!c.valid()) return;
+    ContactSpec& out = spec_.contact;
+    out.enabled = true;
+    set_if(out.by_material, c.optional("fields").choice(kContactFields));
+    out.law = read_contact_law(c);
+    set_if(out.normals, c.optional("normals").choice(kContactNormals));
+    out.separation = c.optional("separation").number(kNonNegative);
+    set_if(out.fmpm_method, c.optional("fmpm_method").choice(kContactFmpmMethods));
+    const std::vector<std::string> names = field_names(out.by_material);
+    if (names.size() < 2)
+      c.value().fail(std::string("at least two ") + (out.by_material ? "materials" : "bodies") +
+                     " for contact (one velocity field each); remove \"contact\" for a single body");
+    read_contact_pairs(c.optional("pairs"), names, out);
+    check_contact_solver(v);
+  }
+
+  /// "law" (default "stick") and "friction" (Coulomb only, required there).
+  static ContactLawSpec read_contact_law(const Object& c) {
+    ContactLawSpec law;
+    set_if(law.law, c.optional("law").choice(kContactLaws));
+    const Value friction = c.optional("friction");
+    if (law.law == ContactLaw::Coulomb) {
+      if (friction.present())
+        set_if(law.friction, friction.number(kNonNegative));
+      else
+        c.missing("friction", "a number >= 0 (the Coulomb coefficient mu) with law \"coulomb\"");
+    } else if (friction.present()) {
+      friction.fail("no friction unless law is \"coulomb\"");
+    }
+    return law;
+  }
+
+  [[nodiscard]] std::vector<std::string> field_names(bool by_material) const {
+    std::vector<std::string> names;
+    if (by_material)
+      for (const auto& m : spec_.materials) names.push_back(m.name);
+    else
+      for (const auto& b : spec_.bodies) names.push_back(b.name);
+    return names;
+  }
+
+  /// [{"between": [name, name], "law", "friction"}, ...]: the law of one pair of fields.
+  void read_contact_pairs(const Value& list, const std::vector<std::string>& names, ContactSpec& out) const {
+    for (const auto& item : list.elements("an array of {\"between\": [name, name], \"law\", \"friction\"}")) {
+      const Object p(item, {"between", "law", "friction"});
+      if (!p.valid()) continue;
+      ContactPairSpec pair;
+      pair.law = read_contact_law(p);
+      const Value between = p.required("between");
+      const std::string expected = "two different names of " +
+                                   std::string(out.by_material ? "materials" : "bodies") + ": " +
+                                   join(names, true);
+      const auto ends = between.elements(expected, 2);
+      if (ends.empty()) continue;
+      if (ends.size() != 2) {
+        between.fail(expected);
+        continue;
+      }
+      std::array<int, 2> index{-1, -1};
+      for (int k = 0; k < 2; ++k) {
+        const auto name = ends[k].string();
+        const auto it = name ? std::find(names.begin(), names.end(), *name) : names.end();
+        if (it == names.end()) {
+          ends[k].fail(expected);
+          continue;
+        }
+        index[k] = static_cast<int>(it - names.begin());
+      }
+      if (index[0] < 0 || index[1] < 0) continue;
+      if (index[0] == index[1]) {
+        between.fail(expected);
+        continue;
+      }
+      pair.first = index[0];
+      pair.second = index[1];
+      out.pairs.push_back(pair);
+    }
+  }
+
+  /// Contact runs on the explicit solver's per-increment FMPM path with fixed-domain bases.
+  void check_contact_solver(const Value& v) const {
+    const SolverSpec& s = spec_.solver;
+    if (dim_ == 1) v.fail("no contact in a 1-D grid (contact needs grid.dim 2 or 3)");
+    if (s.transfer == VelocityTransfer::XPIC)
+      v.fail("no contact with transfer \"xpic\" (use \"fmpm\" or \"flip\")");
+    if (s.transfer == VelocityTransfer::FMPM && s.fmpm.recursion == FmpmRecursion::Binomial)
+      v.fail("no contact with fmpm.recursion \"binomial\" (eq. 4 has no per-increment contact step)");
+    if (s.shape == ShapeKind::CPDI2)
+      v.fail("no contact with solver.shape \"cpdi2\" (tracked corners); use \"cpdi1\"");
+    if (s.mapping != Mapping::MPM) v.fail("no contact with solver.mapping other than \"mpm\"");
   }
 
   Issues& issues_;

@@ -18,7 +18,7 @@ enum class VelocityTransfer { FLIP, PIC, Blend, FMPM, XPIC };   // particle velo
 // Grid basis (docs/input.md#solver): point bases, GIMP family, CPDI family.
 enum class ShapeKind { Linear, BSpline2, BSpline3, UGIMP, CpGIMP, CPDI1, CPDI2, B2GIMP, B2CPDI };
 enum class DeformationUpdate { Exponential, Linear };      // dF = exp(L dt) or I + L dt
-enum class MaterialModel { LinearElastic, NeoHookean, MieGruneisen };
+enum class MaterialModel { LinearElastic, NeoHookean, MieGruneisen, Rigid };
 enum class NeoHookeanVolumetric { LogJ, HalfJSquared };    // lambda lnJ/J  or  lambda/2 (J - 1/J)
 
 struct GridSpec {
@@ -26,6 +26,16 @@ struct GridSpec {
   Triple min{}, max{};
   Triple cell_size{};        // per direction
   std::array<int, 3> cells{};  // (max - min) / cell_size, exact
+};
+
+/// A scalar function of time: a constant (one value) or a piecewise-linear table, held constant
+/// outside its range.
+struct TimeFunction {
+  std::vector<double> times;   // empty for a constant
+  std::vector<double> values;  // one value for a constant
+  [[nodiscard]] double operator()(double t) const;
+  /// The integral from 0 to t (t >= 0), exact for the piecewise-linear table.
+  [[nodiscard]] double integral(double t) const;
 };
 
 struct MaterialSpec {
@@ -37,6 +47,10 @@ struct MaterialSpec {
   NeoHookeanVolumetric volumetric = NeoHookeanVolumetric::LogJ;
   // mie_gruneisen (material/mie_gruneisen.hpp): U_s = C0 + S u_p, Gamma0; mu is its shear modulus
   double bulk_sound_speed = 0, hugoniot_slope = 0, gruneisen = 0;
+  // Rigid: the prescribed velocity of its particles, one function of time per component (zero by
+  // default); a rigid material feels no stress and needs "contact" (docs/theory/contact.md).
+  std::array<TimeFunction, 3> rigid_velocity{TimeFunction{{}, {0.0}}, TimeFunction{{}, {0.0}},
+                                             TimeFunction{{}, {0.0}}};
 };
 
 enum class BodyShape { Box, Disk, Polygon };
@@ -62,16 +76,6 @@ struct BodySpec {
   // seed of a stability scan (Gong 2015 extraction S1).
   double noise_amplitude = 0;
   unsigned noise_seed = 1;
-};
-
-/// A scalar function of time: a constant (one value) or a piecewise-linear table, held constant
-/// outside its range.
-struct TimeFunction {
-  std::vector<double> times;   // empty for a constant
-  std::vector<double> values;  // one value for a constant
-  [[nodiscard]] double operator()(double t) const;
-  /// The integral from 0 to t (t >= 0), exact for the piecewise-linear table.
-  [[nodiscard]] double integral(double t) const;
 };
 
 enum class ConditionKind { Fixed, Slip, Velocity, MovingWall };
@@ -179,6 +183,32 @@ struct CheckSpec {
   std::string source;
 };
 
+/// Multimaterial contact (Nairn 2026 §3.2; docs/theory/contact.md): each body (or material) gets
+/// its own grid velocity field, and nodes shared by two or more fields get a contact law.
+enum class ContactLaw { Stick, Frictionless, Coulomb };
+enum class ContactNormals { MassGradient, Average };  // one field's mass gradient, or both volume gradients
+enum class ContactFmpmMethod { Net, Evolving };       // increments inside the FMPM loop (§3.2)
+
+struct ContactLawSpec {
+  ContactLaw law = ContactLaw::Stick;
+  double friction = 0.0;  // Coulomb coefficient mu
+};
+
+struct ContactPairSpec {
+  int first = 0, second = 0;  // field indices (bodies, or materials when by_material)
+  ContactLawSpec law;
+};
+
+struct ContactSpec {
+  bool enabled = false;
+  bool by_material = false;  // one field per material instead of one per body
+  ContactLawSpec law;        // every pair not listed in pairs
+  std::vector<ContactPairSpec> pairs;
+  ContactNormals normals = ContactNormals::Average;
+  std::optional<double> separation;  // position criterion: contact needs (x_b - x_a) . n < separation * h
+  ContactFmpmMethod fmpm_method = ContactFmpmMethod::Net;
+};
+
 struct Spec {
   std::string title;
   GridSpec grid;
@@ -189,6 +219,7 @@ struct Spec {
   SolverSpec solver;
   OutputSpec output;
   std::vector<CheckSpec> checks;
+  ContactSpec contact;
   nlohmann::json echo;  // the input as read (comments stripped), echoed into summary.json
 };
 

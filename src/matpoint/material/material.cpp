@@ -11,6 +11,8 @@ Material make_material(const MaterialSpec& spec) {
       return NeoHookean{spec.density, spec.lambda, spec.mu, spec.volumetric};
     case MaterialModel::MieGruneisen:
       return MieGruneisen{spec.density, spec.bulk_sound_speed, spec.hugoniot_slope, spec.gruneisen, spec.mu};
+    case MaterialModel::Rigid:
+      return Rigid{spec.density};
     case MaterialModel::LinearElastic:
       break;
   }

@@ -4,19 +4,20 @@
 // `state_size` and takes its state (stress<D>(F, q, state), energy_density<D>(F, state)).
 #pragma once
 
+#include <variant>
+#include <vector>
+
 #include "matpoint/io/spec.hpp"
 #include "matpoint/material/artificial_viscosity.hpp"
 #include "matpoint/material/linear_elastic.hpp"
 #include "matpoint/material/mie_gruneisen.hpp"
 #include "matpoint/material/neo_hookean.hpp"
+#include "matpoint/material/rigid.hpp"
 #include "matpoint/particles/particle_set.hpp"
-
-#include <variant>
-#include <vector>
 
 namespace matpoint {
 
-using Material = std::variant<LinearElastic, NeoHookean, MieGruneisen>;
+using Material = std::variant<LinearElastic, NeoHookean, MieGruneisen, Rigid>;
 
 Material make_material(const MaterialSpec& spec);
 

@@ -1,0 +1,268 @@
+// Multimaterial contact on per-field grid velocities (Nairn 2026 §3.2; theory and references in
+// docs/theory/contact.md). Each body (or material) is a field with its own copy of the N grid
+// nodes (field f owns flat indices f N .. f N + N - 1, see field_stencils.hpp). A node where two
+// or more fields have mass is a contact node; at each one the contact law of the pair turns
+// dp0 = m_red (v_b - v_a), the change to the common velocity, into the applied change dp
+// (contact_law.hpp). The law runs on the lumped momenta in tasks 1.a and 3.a and, inside the
+// FMPM loop (Table 1 line (2)), on each increment by the "Net" (default) or "Evolving" method.
+//   pair of deformable fields:  dp0 = m_a m_b / (m_a + m_b) (v_b - v_a),  +dp to a, -dp to b
+//   deformable a and rigid b:   dp0 = m_a (v_b - v_a),                      +dp to a only
+//   three or more fields:       dp0_a = m_a (v_com - v_a) for each field a  (NairnMPM's form)
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "matpoint/explicit/contact_law.hpp"
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/io/spec.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+namespace matpoint {
+
+template <int D>
+class MultiFieldContact {
+ public:
+  MultiFieldContact() = default;
+
+  /// `rigid_velocity[f]` is empty for a deformable field f.
+  MultiFieldContact(const ContactSpec& spec, int fields, Index nodes, double cell_size, double mass_floor,
+                    std::vector<std::vector<TimeFunction>> rigid_velocity)
+      : spec_(spec),
+        fields_(fields),
+        nodes_(nodes),
+        cell_size_(cell_size),
+        mass_floor_(mass_floor),
+        rigid_velocity_(std::move(rigid_velocity)),
+        laws_(static_cast<std::size_t>(fields * fields), spec.law) {
+    for (const auto& pair : spec.pairs) {
+      laws_[pair.first * fields + pair.second] = pair.law;
+      laws_[pair.second * fields + pair.first] = pair.law;
+    }
+  }
+
+  [[nodiscard]] int fields() const { return fields_; }
+  [[nodiscard]] Index field_nodes() const { return nodes_; }
+  [[nodiscard]] bool rigid(int f) const { return !rigid_velocity_[f].empty(); }
+  [[nodiscard]] std::size_t contact_nodes() const { return entries_.size(); }
+
+  [[nodiscard]] Vec<D> rigid_velocity(int f, double t) const {
+    Vec<D> v;
+    for (int a = 0; a < D; ++a) v[a] = rigid_velocity_[f][a](t);
+    return v;
+  }
+
+  /// Task 1.a set-up, once per step after the mass scatter: finds the contact nodes, their
+  /// normals and (with the position criterion) whether the fields touch. `field_of(p)` is the
+  /// field of particle p; nodes are the multi-field indices of `stencils`.
+  template <class Stencils>
+  void prepare(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
+               const std::vector<double>& mass) {
+    find_contact_nodes(mass);
+    if (entries_.empty()) return;
+    gradient_.assign(mass.size(), Vec<D>::Zero());
+    const bool positions = spec_.separation.has_value();
+    if (positions) position_.assign(mass.size(), Vec<D>::Zero());
+    const bool by_volume = spec_.normals == ContactNormals::Average;
+    for (std::size_t p = 0; p < particles.size(); ++p) {
+      const double w = by_volume ? particles.volume(p) : particles.mass[p];
+      const double m = particles.mass[p];
+      const Vec<D>& x = particles.x[p];
+      stencils.for_each_node(grid, p, [&](Index node, double N, const auto& dN) {
+        gradient_[node] += w * dN;
+        if (positions) position_[node] += (m * N) * x;
+      });
+    }
+    for (auto& e : entries_) set_normal(e, mass);
+  }
+
+  /// Sets the rigid fields' node values to their prescribed velocity at t (times the node mass
+  /// when `x` holds momenta).
+  void set_rigid(const std::vector<double>& mass, std::vector<Vec<D>>& x, double t, bool momentum) const {
+    for (int f = 0; f < fields_; ++f) {
+      if (!rigid(f)) continue;
+      const Vec<D> v = rigid_velocity(f, t);
+      for (Index i = f * nodes_; i < (f + 1) * nodes_; ++i)
+        if (mass[i] > mass_floor_) x[i] = momentum ? Vec<D>(mass[i] * v) : v;
+    }
+  }
+
+  /// Tasks 1.a / 3.a: the lumped contact law on momenta (`momentum` true) or velocities. Caches
+  /// the Net / Evolving state of every contact node for the FMPM loop that may follow. Adds to
+  /// `friction_work` the kinetic energy the tangential part of Coulomb contact removes.
+  void apply_lumped(const std::vector<double>& mass, std::vector<Vec<D>>& x, bool momentum,
+                    double* friction_work = nullptr) {
+    const auto velocity = [&](Index i) -> Vec<D> { return momentum ? Vec<D>(x[i] / mass[i]) : x[i]; };
+    for (auto& e : entries_) {
+      const Vec<D> dp0 = change_to_common(e, mass, velocity);
+      const Vec<D> dp = law_change(e, dp0);
+      e.applied = dp;
+      e.prior = spec_.fmpm_method == ContactFmpmMethod::Net ? dp0 : Vec<D>(dp0 - dp);
+      e.net = dp;
+    }
+    for (const auto& e : entries_) apply(e, e.applied, mass, x, momentum);
+    if (friction_work)
+      for (const auto& e : entries_)
+        if (e.law.law == ContactLaw::Coulomb) *friction_work += slip_work(e, mass, velocity);
+  }
+
+  /// FMPM loop line (2) on the increment dv(l) of every field: rigid fields get no increment, and
+  /// each contact node the Net (or Evolving) correction of Nairn 2026 eq. (20).
+  void correct_increment(const std::vector<double>& mass, std::vector<Vec<D>>& dv) {
+    for (int f = 0; f < fields_; ++f)
+      if (rigid(f))
+        for (Index i = f * nodes_; i < (f + 1) * nodes_; ++i) dv[i].setZero();
+    const auto increment = [&](Index i) -> Vec<D> { return dv[i]; };
+    const bool net = spec_.fmpm_method == ContactFmpmMethod::Net;
+    for (auto& e : entries_) {
+      const Vec<D> dp0 = e.prior + change_to_common(e, mass, increment);  // eq. (20)
+      const Vec<D> dp = law_change(e, dp0);
+      e.applied = net ? Vec<D>(dp - e.net) : dp;  // Net: only the change of the total correction
+      e.prior = net ? dp0 : Vec<D>(dp0 - dp);
+      e.net = dp;
+    }
+    for (const auto& e : entries_) apply(e, e.applied, mass, dv, false);
+  }
+
+ private:
+  enum class Kind { Pair, Rigid, Rest };
+  struct Entry {
+    Index node;  // the grid node (0 .. N - 1)
+    int a, b;    // fields; b = -1 for Rest (a against all the others)
+    Kind kind;
+    ContactLawSpec law;
+    Vec<D> normal = Vec<D>::Zero();  // from a to b
+    bool touching = true;            // normal defined and, with the position criterion, gap closed
+    Vec<D> prior = Vec<D>::Zero(), net = Vec<D>::Zero(), applied = Vec<D>::Zero();
+  };
+
+  [[nodiscard]] Index at(int f, Index node) const { return f * nodes_ + node; }
+
+  void find_contact_nodes(const std::vector<double>& mass) {
+    entries_.clear();
+    std::vector<int> present;
+    for (Index i = 0; i < nodes_; ++i) {
+      present.clear();
+      for (int f = 0; f < fields_; ++f)
+        if (mass[at(f, i)] > mass_floor_) present.push_back(f);
+      if (present.size() < 2) continue;
+      const auto rigid_it = std::find_if(present.begin(), present.end(), [&](int f) { return rigid(f); });
+      if (rigid_it != present.end()) {  // every deformable field against the (first) rigid one
+        for (int f : present)
+          if (!rigid(f)) entries_.push_back({i, f, *rigid_it, Kind::Rigid, laws_[f * fields_ + *rigid_it]});
+      } else if (present.size() == 2) {
+        entries_.push_back({i, present[0], present[1], Kind::Pair, laws_[present[0] * fields_ + present[1]]});
+      } else {
+        for (int f : present) {
+          int heaviest = -1;  // the law of a and the heaviest other field
+          for (int g : present)
+            if (g != f && (heaviest < 0 || mass[at(g, i)] > mass[at(heaviest, i)])) heaviest = g;
+          entries_.push_back({i, f, -1, Kind::Rest, laws_[f * fields_ + heaviest]});
+        }
+      }
+    }
+  }
+
+  /// Normal from a to b: a's outward normal minus b's ("average", volume gradients), or the
+  /// outward mass-gradient normal of one field: the rigid one, else the heavier one (a for Rest).
+  void set_normal(Entry& e, const std::vector<double>& mass) {
+    const Index ia = at(e.a, e.node);
+    Vec<D> other = Vec<D>::Zero(), other_position = Vec<D>::Zero();
+    double other_mass = 0.0;
+    for (int g = 0; g < fields_; ++g) {
+      const Index ig = at(g, e.node);
+      if (g == e.a || (e.b >= 0 && g != e.b) || !(mass[ig] > mass_floor_)) continue;
+      other += gradient_[ig];
+      other_mass += mass[ig];
+      if (!position_.empty()) other_position += position_[ig];
+    }
+    // gradient_ holds sum_p w_p grad S_pi = -grad m(x_i): the outward normal of each field.
+    Vec<D> n;
+    if (spec_.normals == ContactNormals::Average)
+      n = gradient_[ia] - other;
+    else if (e.kind == Kind::Rigid || (e.kind == Kind::Pair && mass[at(e.b, e.node)] > mass[ia]))
+      n = -other;
+    else
+      n = gradient_[ia];
+    const double length = n.norm();
+    e.touching = length > 0.0;
+    if (!e.touching) return;
+    e.normal = n / length;
+    if (spec_.separation) {  // contact position criterion: the fields' mass centres at the node
+      const double gap = (other_position / other_mass - position_[ia] / mass[ia]).dot(e.normal);
+      e.touching = gap < *spec_.separation * cell_size_;
+    }
+  }
+
+  template <class Velocity>
+  Vec<D> change_to_common(const Entry& e, const std::vector<double>& mass, const Velocity& v) const {
+    const Index ia = at(e.a, e.node);
+    const double ma = mass[ia];
+    switch (e.kind) {
+      case Kind::Pair: {
+        const Index ib = at(e.b, e.node);
+        const double mb = mass[ib];
+        return (ma * mb / (ma + mb)) * (v(ib) - v(ia));
+      }
+      case Kind::Rigid:
+        return ma * (v(at(e.b, e.node)) - v(ia));
+      case Kind::Rest:
+        break;
+    }
+    Vec<D> momentum = Vec<D>::Zero();
+    double total = 0.0;
+    for (int g = 0; g < fields_; ++g) {
+      const Index ig = at(g, e.node);
+      if (!(mass[ig] > mass_floor_)) continue;
+      momentum += mass[ig] * v(ig);
+      total += mass[ig];
+    }
+    return ma * (momentum / total - v(ia));
+  }
+
+  /// Stick applies everywhere (no detection); the other laws only where the fields touch.
+  [[nodiscard]] Vec<D> law_change(const Entry& e, const Vec<D>& dp0) const {
+    if (e.law.law == ContactLaw::Stick) return dp0;
+    if (!e.touching) return Vec<D>::Zero();
+    return contact_momentum_change<D>(e.law, dp0, e.normal);
+  }
+
+  void apply(const Entry& e, const Vec<D>& dp, const std::vector<double>& mass, std::vector<Vec<D>>& x,
+             bool momentum) const {
+    const Index ia = at(e.a, e.node);
+    x[ia] += momentum ? dp : Vec<D>(dp / mass[ia]);
+    if (e.kind != Kind::Pair) return;
+    const Index ib = at(e.b, e.node);
+    x[ib] -= momentum ? dp : Vec<D>(dp / mass[ib]);
+  }
+
+  /// Friction work of one step at a node: the tangential change dp_t (the friction impulse,
+  /// +dp_t on a) times the relative tangential velocity left after the correction (the slip
+  /// rate), dp_t . (v_b - v_a)_after >= 0; zero where the law sticks (Nairn, Bardenhagen & Smith
+  /// 2018: frictional heating = friction force x slip).
+  template <class Velocity>
+  [[nodiscard]] double slip_work(const Entry& e, const std::vector<double>& mass, const Velocity& v) const {
+    if (!e.touching) return 0.0;
+    const Vec<D> dp_t = e.applied - e.applied.dot(e.normal) * e.normal;
+    const Index ia = at(e.a, e.node);
+    double m_eff = mass[ia];  // change_to_common = m_eff (v_b - v_a)
+    if (e.kind == Kind::Pair) {
+      const double mb = mass[at(e.b, e.node)];
+      m_eff = mass[ia] * mb / (mass[ia] + mb);
+    }
+    return std::max(0.0, dp_t.dot(change_to_common(e, mass, v)) / m_eff);
+  }
+
+  ContactSpec spec_;
+  int fields_ = 1;
+  Index nodes_ = 0;
+  double cell_size_ = 0.0;
+  double mass_floor_ = 0.0;
+  std::vector<std::vector<TimeFunction>> rigid_velocity_;  // by field; empty: deformable
+  std::vector<ContactLawSpec> laws_;                       // by field pair (a * fields + b)
+  std::vector<Entry> entries_;
+  std::vector<Vec<D>> gradient_, position_;  // by multi-field node: sum w_p grad S, sum M_p S x_p
+};
+
+}  // namespace matpoint
