@@ -69,7 +69,8 @@ double bar_period_error(const Spec& spec, const History& h) {
     }
   }
   if (crossings.size() < 2) return kNaN;
-  const double period = 2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const double period =
+      2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   const auto bar = vibrating_bar(spec);
   const double exact = 4.0 * bar.length / bar.c;
   return std::abs(period - exact) / exact;
@@ -124,10 +125,11 @@ double vibrating_bar_com_velocity(double v0, double wave_speed, double length, d
   return 2.0 * v0 / std::numbers::pi * std::cos(std::numbers::pi * wave_speed * t / (2.0 * length));
 }
 
-double evaluate_measure(std::string_view name, const Spec& spec, const History& history, double momentum_scale,
-                        const FinalState* final_state) {
+double evaluate_measure(std::string_view name, const Spec& spec, const History& history,
+                        double momentum_scale, const FinalState* final_state) {
   if (name == "fitted_com_acceleration_x") return fitted_com_acceleration_x(history);
-  if (name == "shock_plateau_stress") return final_state ? shock_plateau_stress(final_state->stress_xx) : kNaN;
+  if (name == "shock_plateau_stress")
+    return final_state ? shock_plateau_stress(final_state->stress_xx) : kNaN;
   if (name == "max_relative_energy_error") return max_relative_energy_error(history);
   if (name == "max_relative_momentum_error") return max_relative_momentum_error(history, momentum_scale);
   if (name == "min_jacobian") {

@@ -48,10 +48,10 @@ class FmpmLoop {
     statistics_.loops += 1;
     if (k <= 1) return 1;
     const auto start = std::chrono::steady_clock::now();
-    const int order =
-        spec_.recursion == FmpmRecursion::Binomial
-            ? run_binomial(grid, stencils, particles, mass, mass_floor, v, ws)
-            : run_incremental(grid, stencils, particles, mass, mass_floor, conditions, t, v, ws, impulse, work);
+    const int order = spec_.recursion == FmpmRecursion::Binomial
+                          ? run_binomial(grid, stencils, particles, mass, mass_floor, v, ws)
+                          : run_incremental(grid, stencils, particles, mass, mass_floor, conditions, t, v, ws,
+                                            impulse, work);
     if (spec_.boundary_method == FmpmBoundaryMethod::Combined || spec_.recursion == FmpmRecursion::Binomial) {
       double ignored_work = 0.0;  // Nairn 2026 §3.1 "combined": overwrite v+(k) on the condition nodes
       conditions.apply(v, t, impulse ? &mass : nullptr, impulse, work ? work : &ignored_work);
@@ -110,7 +110,7 @@ class FmpmLoop {
       for (std::ptrdiff_t i = 0; i < nodes; ++i) prev_[i] = scale * (prev_[i] - next_[i]);  // A dv(l-1)
       if (spec_.boundary_method == FmpmBoundaryMethod::Incremental)
         conditions.zero_constrained(prev_, &mass, impulse, work, t);  // (1), with the walls' work
-      if (correction_) correction_(prev_);                           // (2) contact (Net or Evolving)
+      if (correction_) correction_(prev_);                            // (2) contact (Net or Evolving)
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) v[i] += prev_[i];
       if (spec_.measure != FmpmMeasure::None && measure(mass, mass_floor, v) < spec_.limit) return l;  // (3)

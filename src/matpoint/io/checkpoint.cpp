@@ -19,8 +19,9 @@ using json = nlohmann::json;
 constexpr const char* kFormat = "matpoint checkpoint";
 // time, step, 3 energies, momentum[3], impulse[3], min J, rms dv, grid momentum difference[3],
 // checkerboard velocity, grid rms velocity, hourglass energy
-constexpr std::size_t kSampleColumns = 19;
-constexpr std::size_t kBodyColumns = 9;  // kinetic, strain, mass, momentum[3], centre-of-mass velocity[3]
+constexpr std::size_t kSampleColumns = 20;
+constexpr std::size_t kBodyColumns =
+    12;  // kinetic, strain, mass, momentum[3], centre-of-mass velocity[3], position[3]
 
 hsize_t h(std::size_t n) { return static_cast<hsize_t>(n); }
 
@@ -73,12 +74,14 @@ std::vector<double> history_rows(const History& history) {
                                         s.grid_momentum_difference[2],
                                         s.checkerboard_velocity,
                                         s.grid_rms_velocity,
-                                        s.hourglass_energy};
+                                        s.hourglass_energy,
+                                        s.friction_work};
     out.insert(out.end(), row, row + kSampleColumns);
     for (int b = 0; b < history.body_count; ++b) {
       out.insert(out.end(), {s.body_kinetic[b], s.body_strain[b], s.body_mass[b]});
       out.insert(out.end(), s.body_momentum[b].begin(), s.body_momentum[b].end());
       out.insert(out.end(), s.body_com_velocity[b].begin(), s.body_com_velocity[b].end());
+      out.insert(out.end(), s.body_com_position[b].begin(), s.body_com_position[b].end());
     }
   }
   return out;
@@ -98,6 +101,7 @@ std::vector<HistorySample> history_samples(const std::vector<double>& rows, std:
     s.min_jacobian = x[11], s.rms_velocity_change = x[12];
     s.grid_momentum_difference = {x[13], x[14], x[15]};
     s.checkerboard_velocity = x[16], s.grid_rms_velocity = x[17], s.hourglass_energy = x[18];
+    s.friction_work = x[19];
     for (int b = 0; b < bodies; ++b) {
       const double* y = x + kSampleColumns + kBodyColumns * static_cast<std::size_t>(b);
       s.body_kinetic.push_back(y[0]);
@@ -105,6 +109,7 @@ std::vector<HistorySample> history_samples(const std::vector<double>& rows, std:
       s.body_mass.push_back(y[2]);
       s.body_momentum.push_back({y[3], y[4], y[5]});
       s.body_com_velocity.push_back({y[6], y[7], y[8]});
+      s.body_com_position.push_back({y[9], y[10], y[11]});
     }
   }
   return out;
@@ -204,6 +209,7 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   w.write("simulation/time", sim.time);
   w.write("simulation/step", std::int64_t{sim.step});
   w.write("simulation/external_work", sim.external_work);
+  w.write("simulation/friction_work", sim.friction_work);
   w.write("simulation/external_impulse",
           std::vector<double>(sim.external_impulse.data(), sim.external_impulse.data() + D), {D});
   w.write("simulation/grid_momentum_difference",
@@ -264,6 +270,7 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   sim.time = r.number("simulation/time");
   sim.step = r.integer("simulation/step");
   sim.external_work = r.number("simulation/external_work");
+  sim.friction_work = r.number("simulation/friction_work");
   const auto impulse = r.doubles("simulation/external_impulse", {D});
   for (int a = 0; a < D; ++a) sim.external_impulse[a] = impulse[a];
   const auto difference = r.doubles("simulation/grid_momentum_difference", {D});

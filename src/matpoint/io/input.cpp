@@ -153,9 +153,9 @@ std::string_view name_of(const std::array<Named<T>, N>& options, T value) {
 }
 
 constexpr std::array<Named<MaterialModel>, 4> kModels{{{"linear_elastic", MaterialModel::LinearElastic},
-                                                      {"neo_hookean", MaterialModel::NeoHookean},
-                                                      {"mie_gruneisen", MaterialModel::MieGruneisen},
-                                                      {"rigid", MaterialModel::Rigid}}};
+                                                       {"neo_hookean", MaterialModel::NeoHookean},
+                                                       {"mie_gruneisen", MaterialModel::MieGruneisen},
+                                                       {"rigid", MaterialModel::Rigid}}};
 constexpr std::array<Named<ContactLaw>, 3> kContactLaws{{{"stick", ContactLaw::Stick},
                                                          {"frictionless", ContactLaw::Frictionless},
                                                          {"coulomb", ContactLaw::Coulomb}}};
@@ -528,11 +528,10 @@ class SpecReader {
     read_bodies(top.required("bodies"));
     read_conditions(top.optional("boundary_conditions"));
     read_loads(Object(top.optional("loads"), {"gravity"}));
-    read_solver(
-        Object(top.required("solver"),
-               {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape", "mapping",
-                "mls", "deformation_update", "dt", "courant", "end_time", "max_steps", "mass_tolerance",
-                "artificial_viscosity"}));
+    read_solver(Object(top.required("solver"),
+                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
+                        "mapping", "mls", "deformation_update", "dt", "courant", "end_time", "max_steps",
+                        "mass_tolerance", "artificial_viscosity"}));
     check_one_sided_transfer(top.optional("boundary_conditions"));
     read_output(Object(top.optional("output"),
                        {"every_steps", "every_time", "particles", "plots", "fields", "checkpoint"}));
@@ -616,8 +615,8 @@ class SpecReader {
   }
 
   MaterialSpec read_material(const Value& v) {
-    const Object m(v, {"name", "model", "density", "E", "nu", "lambda", "mu", "volumetric", "bulk_sound_speed",
-                       "hugoniot_slope", "gruneisen", "shear_modulus", "velocity"});
+    const Object m(v, {"name", "model", "density", "E", "nu", "lambda", "mu", "volumetric",
+                       "bulk_sound_speed", "hugoniot_slope", "gruneisen", "shear_modulus", "velocity"});
     MaterialSpec out;
     if (!m.valid()) {
       names_complete_ = false;
@@ -633,7 +632,8 @@ class SpecReader {
       return out;
     }
     for (const char* key : {"bulk_sound_speed", "hugoniot_slope", "gruneisen", "shear_modulus"})
-      if (m.has(key)) m.optional(key).fail(std::string("no \"") + key + "\" unless model is \"mie_gruneisen\"");
+      if (m.has(key))
+        m.optional(key).fail(std::string("no \"") + key + "\" unless model is \"mie_gruneisen\"");
     if (m.has("velocity")) m.optional("velocity").fail("no velocity unless model is \"rigid\"");
     read_elasticity(m, out);
     const Value volumetric = m.optional("volumetric");
@@ -975,7 +975,9 @@ class SpecReader {
     if (t != VelocityTransfer::FMPM && t != VelocityTransfer::XPIC) return;
     for (std::size_t i = 0; i < spec_.conditions.size(); ++i)
       if (spec_.conditions[i].one_sided)
-        list.element(i).member("one_sided", false).fail("false (one_sided conditions need transfer flip, pic or blend)");
+        list.element(i)
+            .member("one_sided", false)
+            .fail("false (one_sided conditions need transfer flip, pic or blend)");
   }
 
   /// Exactly one of "face" and "box".

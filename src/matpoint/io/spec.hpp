@@ -2,9 +2,8 @@
 // Every field here has passed validation; the simulation never re-checks user input.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <array>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,17 +13,17 @@ namespace matpoint {
 using Triple = std::array<double, 3>;  // unused trailing components are zero
 
 enum class UpdateScheme { USL, USF, MUSL, USAVG, USAVGPlus };  // Nairn 2026 §2.1 (MUSL = "USL+")
-enum class VelocityTransfer { FLIP, PIC, Blend, FMPM, XPIC };   // particle velocity update
+enum class VelocityTransfer { FLIP, PIC, Blend, FMPM, XPIC };  // particle velocity update
 // Grid basis (docs/input.md#solver): point bases, GIMP family, CPDI family.
 enum class ShapeKind { Linear, BSpline2, BSpline3, UGIMP, CpGIMP, CPDI1, CPDI2, B2GIMP, B2CPDI };
-enum class DeformationUpdate { Exponential, Linear };      // dF = exp(L dt) or I + L dt
+enum class DeformationUpdate { Exponential, Linear };  // dF = exp(L dt) or I + L dt
 enum class MaterialModel { LinearElastic, NeoHookean, MieGruneisen, Rigid };
-enum class NeoHookeanVolumetric { LogJ, HalfJSquared };    // lambda lnJ/J  or  lambda/2 (J - 1/J)
+enum class NeoHookeanVolumetric { LogJ, HalfJSquared };  // lambda lnJ/J  or  lambda/2 (J - 1/J)
 
 struct GridSpec {
   int dim = 2;
   Triple min{}, max{};
-  Triple cell_size{};        // per direction
+  Triple cell_size{};          // per direction
   std::array<int, 3> cells{};  // (max - min) / cell_size, exact
 };
 
@@ -59,8 +58,8 @@ struct BodySpec {
   std::string name;
   int material = 0;  // index into Spec::materials
   BodyShape shape = BodyShape::Box;
-  Triple min{}, max{};                        // Box (interval / rectangle / box)
-  Triple center{};                            // Disk (disk in 2-D, sphere in 3-D, interval in 1-D)
+  Triple min{}, max{};  // Box (interval / rectangle / box)
+  Triple center{};      // Disk (disk in 2-D, sphere in 3-D, interval in 1-D)
   double radius = 0;
   std::vector<std::array<double, 2>> polygon;  // Polygon (2-D only), counter-clockwise or clockwise
   int particles_per_cell = 2;                  // per direction
@@ -106,21 +105,21 @@ struct LoadSpec {
 };
 
 /// FMPM(k) and XPIC(k) settings (Nairn 2026 §2.2-3.4; docs/theory/fmpm.md).
-enum class FmpmMeasure { None, Means, Changes };        // dynamic FMPM convergence measure (§3.4)
+enum class FmpmMeasure { None, Means, Changes };          // dynamic FMPM convergence measure (§3.4)
 enum class FmpmBoundaryMethod { Incremental, Combined };  // §3.1: new method, or the old "combined"
-enum class FmpmRecursion { Incremental, Binomial };     // eq. (6), or eq. (4) (for verification)
+enum class FmpmRecursion { Incremental, Binomial };       // eq. (6), or eq. (4) (for verification)
 enum class FmpmPeriod { EveryStep, Courant, Steps, Time };
 
 struct FmpmSpec {
-  int order = 2;                  // k: the number of terms of the series m~_k^-1 (k = 1: lumped)
-  int blend_with = 0;             // 0: no blending; m >= 1: blend with FMPM(m) (§3.3)
-  double blend_factor = 1.0;      // alpha_b
+  int order = 2;              // k: the number of terms of the series m~_k^-1 (k = 1: lumped)
+  int blend_with = 0;         // 0: no blending; m >= 1: blend with FMPM(m) (§3.3)
+  double blend_factor = 1.0;  // alpha_b
   FmpmMeasure measure = FmpmMeasure::None;
-  double limit = 0.0;             // dynamic FMPM: stop when the measure falls below this
+  double limit = 0.0;  // dynamic FMPM: stop when the measure falls below this
   FmpmBoundaryMethod boundary_method = FmpmBoundaryMethod::Incremental;
   FmpmRecursion recursion = FmpmRecursion::Incremental;
   FmpmPeriod period = FmpmPeriod::EveryStep;  // periodic FMPM: FLIP in the other steps
-  double period_value = 0.0;      // Courant units C_X, a step count, or a time
+  double period_value = 0.0;                  // Courant units C_X, a step count, or a time
 };
 
 /// Particle-to-grid mapping (docs/input.md#solver, docs/theory/impm.md): mass-weighted MPM; Gong
@@ -137,7 +136,8 @@ struct MlsSpec {
 };
 
 struct SolverSpec {
-  UpdateScheme scheme = UpdateScheme::MUSL;  // see docs/input.md: robust with FLIP, energy within 0.1 % in two-disks
+  UpdateScheme scheme =
+      UpdateScheme::MUSL;  // see docs/input.md: robust with FLIP, energy within 0.1 % in two-disks
   VelocityTransfer transfer = VelocityTransfer::FLIP;
   double position_alpha = 1.0;  // Nairn 2026 eq. (7) alpha_t; default 1 for FLIP/PIC/blend, 1/2 for FMPM
   double flip_fraction = 1.0;   // Blend: V = f V_FLIP + (1 - f) V_PIC
@@ -149,8 +149,9 @@ struct SolverSpec {
   std::optional<double> dt;  // fixed time step, or
   double courant = 0.5;      // Courant number with the largest material wave speed
   double end_time = 0;
-  long max_steps = 0;             // 0: no limit
-  double mass_tolerance = 1e-12;  // nodes lighter than this fraction of the largest particle mass are inactive
+  long max_steps = 0;  // 0: no limit
+  double mass_tolerance =
+      1e-12;  // nodes lighter than this fraction of the largest particle mass are inactive
   // Gong 2015 extraction A24: the velocity conditions also hold on the old node velocities, so the
   // FLIP increment carries no boundary reaction (built-in verification problems only; not an input key).
   bool constrain_old_velocity = false;
@@ -166,10 +167,10 @@ struct CheckpointSpec {
 };
 
 struct OutputSpec {
-  long every_steps = 0;     // 0: use every_time
-  double every_time = 0;    // 0 and every_steps == 0: first and last state only
-  bool particles = true;    // write particles_NNNNNN.vtu + results.pvd
-  bool plots = true;        // write plots/*.png at the end (needs python3-matplotlib)
+  long every_steps = 0;             // 0: use every_time
+  double every_time = 0;            // 0 and every_steps == 0: first and last state only
+  bool particles = true;            // write particles_NNNNNN.vtu + results.pvd
+  bool plots = true;                // write plots/*.png at the end (needs python3-matplotlib)
   std::vector<std::string> fields;  // particle fields written to .vtu; empty = all
   CheckpointSpec checkpoint;
 };

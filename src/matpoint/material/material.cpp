@@ -30,7 +30,8 @@ int state_size(const Material& m) {
 }
 
 template <int D>
-long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles, const ArtificialViscosity& av) {
+long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles,
+                   const ArtificialViscosity& av) {
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
   const auto stride = static_cast<std::ptrdiff_t>(particles.state_stride);
   long first_bad = -1;
@@ -73,7 +74,8 @@ double strain_energy(const std::vector<Material>& materials, const ParticleSet<D
         [&](const auto& model) {
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(+ : energy)
           for (std::ptrdiff_t p = 0; p < n; ++p) {
-            if (particles.material[p] != static_cast<int>(m) || (body >= 0 && particles.body[p] != body)) continue;
+            if (particles.material[p] != static_cast<int>(m) || (body >= 0 && particles.body[p] != body))
+              continue;
             if constexpr (requires { std::decay_t<decltype(model)>::state_size; })
               energy += particles.volume0[p] *
                         model.template energy_density<D>(particles.F[p], &particles.state[p * stride]);

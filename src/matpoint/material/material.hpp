@@ -24,7 +24,8 @@ Material make_material(const MaterialSpec& spec);
 /// History values per particle a model needs (0 for the elastic models).
 int state_size(const Material& m);
 
-template <int D> double wave_speed(const Material& m) {
+template <int D>
+double wave_speed(const Material& m) {
   return std::visit([](const auto& model) { return model.template wave_speed<D>(); }, m);
 }
 
@@ -36,7 +37,7 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
                    const ArtificialViscosity& av = {});
 
 /// Sum over particles of V0_p W(F_p).
-template <int D> double strain_energy(const std::vector<Material>& materials, const ParticleSet<D>& particles,
-                                      int body = -1);
+template <int D>
+double strain_energy(const std::vector<Material>& materials, const ParticleSet<D>& particles, int body = -1);
 
 }  // namespace matpoint
