@@ -7,14 +7,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.bash"
 # shellcheck source=restart_common.bash
 source "$(dirname "${BASH_SOURCE[0]}")/restart_common.bash"
 
-restart_input "$tmp/input.json"
-"$matpoint" run "$tmp/input.json" --quiet --threads 1 --out "$tmp/whole" >/dev/null || fail "uninterrupted run failed"
-
-for attempt in 1 2 3; do
-  rm -rf "$tmp/parts"
-  status=$(run_until_checkpoint TERM "$tmp/input.json" "$tmp/parts")
-  [[ $status == finished ]] || break
-done
+interrupted_pair TERM
 [[ $status == 143 ]] || fail "the terminated run exited with $status, expected 143; stderr: $(cat "$tmp/parts.stderr")"
 grep -q -- "--restart" "$tmp/parts.stderr" || fail "stderr does not say how to continue: $(cat "$tmp/parts.stderr")"
 "$python" - "$tmp/parts" <<'PY'

@@ -40,3 +40,17 @@ same_results() {
   done
   [[ $(ls "$a"/particles_*.vtu | wc -l) -eq $(ls "$b"/particles_*.vtu | wc -l) ]] || fail "different .vtu counts"
 }
+
+# interrupted_pair SIGNAL: the uninterrupted reference run into $tmp/whole, then a run of the same
+# input stopped by SIGNAL after a checkpoint into $tmp/parts (up to three tries when a run finishes
+# before the signal lands). Sets $status to the stopped run's exit status (or "finished").
+interrupted_pair() {
+  restart_input "$tmp/input.json"
+  "$matpoint" run "$tmp/input.json" --quiet --threads 1 --out "$tmp/whole" >/dev/null || fail "uninterrupted run failed"
+  local attempt
+  for attempt in 1 2 3; do
+    rm -rf "$tmp/parts"
+    status=$(run_until_checkpoint "$1" "$tmp/input.json" "$tmp/parts")
+    [[ $status == finished ]] || break
+  done
+}
