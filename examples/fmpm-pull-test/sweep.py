@@ -8,40 +8,25 @@ Usage: python3 examples/fmpm-pull-test/sweep.py [MATPOINT] [--shape cpdi1] [--de
 Prints a Markdown table and, last, the ratio FLIP / FMPM(k) for the largest k.
 """
 import argparse
-import csv
-import json
 import os
-import re
-import subprocess
 import sys
-import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+from example_tools import load_input, run_spec, variant  # noqa: E402
+
 END_VELOCITY = 10 * 0.00866
 
 
-def load_input():
-    text = open(os.path.join(HERE, "input.json")).read()
-    return json.loads(re.sub(r"^\s*//.*$", "", text, flags=re.MULTILINE))
-
-
 def error(matpoint, base, shape, depth, transfer, threads):
-    spec = json.loads(json.dumps(base))
-    spec["solver"].pop("fmpm", None)
-    spec["solver"].update(transfer)
-    spec["solver"]["shape"] = shape
+    spec = variant(base, solver=dict(transfer, shape=shape),
+                   output={"every_steps": 1, "particles": False, "plots": False})
     for wall in spec["boundary_conditions"]:
         wall["depth"] = depth
-    spec["output"] = {"every_steps": 1, "particles": False, "plots": False}
-    with tempfile.TemporaryDirectory() as out:
-        path = os.path.join(out, "input.json")
-        json.dump(spec, open(path, "w"))
-        proc = subprocess.run([matpoint, "run", path, "--out", out, "--quiet", "--threads", str(threads)],
-                              capture_output=True, text=True)
-        rows = list(csv.DictReader(open(os.path.join(out, "history.csv"))))
-    if proc.returncode != 0:
+    result = run_spec(matpoint, spec, threads)
+    if not result.ok:
         return float("nan")
-    values = [float(r["rms_velocity_change"]) for r in rows[1:]]
+    values = result.column("rms_velocity_change")[1:]
     return 100.0 * sum(values) / len(values) / END_VELOCITY
 
 
@@ -53,7 +38,7 @@ def main():
     parser.add_argument("--orders", default="1,2,3,4,6,8,10,12")
     parser.add_argument("--threads", type=int, default=1)
     args = parser.parse_args()
-    base = load_input()
+    base = load_input(HERE)
     flip = error(args.matpoint, base, args.shape, args.depth, {"transfer": "flip", "position_alpha": 0.5}, args.threads)
     print(f"{args.shape}, wall depth {args.depth}: FLIP error {flip:.4g} %\n")
     print("| k | new (incremental) | old (combined) | FLIP / new |")

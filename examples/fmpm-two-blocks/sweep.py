@@ -6,35 +6,21 @@ Usage: python3 examples/fmpm-two-blocks/sweep.py [MATPOINT] [--limits 0.1,0.01,.
 Prints a Markdown table. One thread by default, so the times compare.
 """
 import argparse
-import json
 import os
-import re
-import subprocess
 import sys
-import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def load_input():
-    text = open(os.path.join(HERE, "input.json")).read()
-    return json.loads(re.sub(r"^\s*//.*$", "", text, flags=re.MULTILINE))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+from example_tools import load_input, run_spec, variant  # noqa: E402
 
 
 def run(matpoint, base, transfer, threads):
-    spec = json.loads(json.dumps(base))
-    spec["solver"].pop("fmpm", None)
-    spec["solver"].update(transfer)
-    spec["output"] = {"every_time": 1e-5, "particles": False, "plots": False}
-    with tempfile.TemporaryDirectory() as out:
-        path = os.path.join(out, "input.json")
-        json.dump(spec, open(path, "w"))
-        proc = subprocess.run([matpoint, "run", path, "--out", out, "--quiet", "--threads", str(threads)],
-                              capture_output=True, text=True)
-        summary = json.load(open(os.path.join(out, "summary.json")))
+    spec = variant(base, solver=transfer, output={"every_time": 1e-5, "particles": False, "plots": False})
+    result = run_spec(matpoint, spec, threads)
+    summary = result.summary
     initial, final = summary["initial"]["total_energy"], summary["final"]["total_energy"]
     return {"loss": 1 - final / initial, "time": summary["step_wall_seconds"],
-            "order": summary.get("fmpm_average_order", 0.0), "ok": proc.returncode == 0}
+            "order": summary.get("fmpm_average_order", 0.0), "ok": result.ok}
 
 
 def main():
@@ -43,7 +29,7 @@ def main():
     parser.add_argument("--limits", default="0.1,0.03,0.01,0.003,0.0015,0.001,0.0001")
     parser.add_argument("--threads", type=int, default=1)
     args = parser.parse_args()
-    base = load_input()
+    base = load_input(HERE)
     cases = [("FLIP (alpha 1/2)", {"transfer": "flip", "position_alpha": 0.5}),
              ("FMPM(2)", {"transfer": "fmpm", "fmpm": {"order": 2}}),
              ("FMPM(4)", {"transfer": "fmpm", "fmpm": {"order": 4}}),

@@ -2,9 +2,13 @@
 """Runs the two-disk collision with MPM, IMPM and improved CPDI, prints energy error, smallest
 det F and cost per particle-step of each, and draws compare.png (energy and hourglass energy
 against time). Usage: python3 compare.py [path/to/matpoint] [--threads N]"""
-import csv, json, os, subprocess, sys
+import os
+import sys
 
 here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(here, "..", "..", "scripts"))
+from example_tools import load_input, run_spec  # noqa: E402
+
 matpoint = sys.argv[1] if len(sys.argv) > 1 and not sys.argv[1].startswith("--") else "build/matpoint"
 threads = sys.argv[sys.argv.index("--threads") + 1] if "--threads" in sys.argv else "1"
 out_root = os.path.join("out", "impm-large-deformation")
@@ -13,11 +17,8 @@ cases = [("MPM", "input-mpm.json"), ("IMPM", "input-impm.json"), ("improved CPDI
 results = {}
 for label, name in cases:
     out = os.path.join(out_root, name.replace(".json", ""))
-    subprocess.run([matpoint, "run", os.path.join(here, name), "--out", out, "--threads", threads],
-                   check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    summary = json.load(open(os.path.join(out, "summary.json")))
-    rows = list(csv.DictReader(open(os.path.join(out, "history.csv"))))
-    results[label] = (summary, rows)
+    result = run_spec(matpoint, load_input(here, name), threads, out=out)
+    results[label] = (result.summary, result.history)
 
 print("| method | status | max energy error | final energy / initial | min det F | max hourglass energy / E0 "
       "| MLS fallbacks | particle-steps / s (wall) | microseconds per particle-step |")

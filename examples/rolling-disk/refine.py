@@ -7,40 +7,28 @@ Usage: python3 examples/rolling-disk/refine.py [MATPOINT] [--cells 0.04,0.02,0.0
 Prints a Markdown table: a / (2/3 g sin 60) for the no-slip face, a / (g sin 60) for the slip face.
 """
 import argparse
-import json
 import math
 import os
-import re
-import subprocess
-import tempfile
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+from example_tools import load_input, run_spec, variant  # noqa: E402
+
 G_SIN = 9.81 * math.sin(math.radians(60))
 
 
-def load_input():
-    text = open(os.path.join(HERE, "input.json")).read()
-    return json.loads(re.sub(r"^\s*//.*$", "", text, flags=re.MULTILINE))
-
-
 def fitted_acceleration(matpoint, base, face, h, end_time, shape, threads):
-    spec = json.loads(json.dumps(base))
+    spec = variant(base, solver={"end_time": end_time, "shape": shape},
+                   output={"every_time": 0.01, "particles": False, "plots": False})
     spec["grid"]["cell_size"] = h
     spec["boundary_conditions"][0]["type"] = face
-    spec["solver"]["end_time"] = end_time
-    spec["solver"]["shape"] = shape
-    spec["output"] = {"every_time": 0.01, "particles": False, "plots": False}
     spec["checks"] = [{"name": "a", "measure": "fitted_com_acceleration_x", "expected": 0, "tolerance": 1e9,
                        "source": "refine.py"}]
-    with tempfile.TemporaryDirectory() as out:
-        path = os.path.join(out, "input.json")
-        json.dump(spec, open(path, "w"))
-        proc = subprocess.run([matpoint, "run", path, "--out", out, "--quiet", "--threads", str(threads)],
-                              capture_output=True, text=True)
-        summary = json.load(open(os.path.join(out, "summary.json")))
-    if proc.returncode != 0:
-        return float("nan"), summary
-    return summary["checks"][0]["measured"], summary
+    result = run_spec(matpoint, spec, threads)
+    if not result.ok:
+        return float("nan"), result.summary
+    return result.summary["checks"][0]["measured"], result.summary
 
 
 def main():
@@ -51,7 +39,7 @@ def main():
     parser.add_argument("--end-time", type=float, default=0.3)
     parser.add_argument("--shape", default="cpgimp")
     args = parser.parse_args()
-    base = load_input()
+    base = load_input(HERE)
     print(f"shape {args.shape}, end time {args.end_time} s; exact: rolling 2/3 g sin 60 = {2 * G_SIN / 3:.4f}, "
           f"sliding g sin 60 = {G_SIN:.4f} m/s^2\n")
     print("| h (m) | R / h | particles | no-slip a (m/s²) | / (2/3 g sin θ) | slip a (m/s²) | / (g sin θ) | wall s |")

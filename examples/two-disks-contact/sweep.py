@@ -9,51 +9,35 @@ Prints Markdown tables. The paper's cell is 1/3 mm (the default); input.json's 1
 """
 import argparse
 import concurrent.futures
-import csv
-import json
 import math
 import os
-import re
-import subprocess
 import sys
-import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def load_input():
-    text = open(os.path.join(HERE, "input.json")).read()
-    return json.loads(re.sub(r"^\s*//.*$", "", text, flags=re.MULTILINE))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+from example_tools import load_input, run_spec, variant  # noqa: E402
 
 
 def case(base, cell, transfer, mu, separation=None):
-    spec = json.loads(json.dumps(base))
+    spec = variant(base, solver=transfer, output={"every_time": 4e-6, "particles": False, "plots": False})
     spec["grid"]["cell_size"] = cell
-    spec["solver"].pop("fmpm", None)
-    spec["solver"].update(transfer)
     spec["contact"] = {"law": "coulomb", "friction": mu} if mu > 0 else {"law": "frictionless"}
     spec["contact"]["normals"] = base["contact"].get("normals", "average")
     if separation is not None:
         spec["contact"]["separation"] = separation
-    spec["output"] = {"every_time": 4e-6, "particles": False, "plots": False}
     spec.pop("checks", None)
     return spec
 
 
 def run(matpoint, spec):
-    with tempfile.TemporaryDirectory() as out:
-        path = os.path.join(out, "input.json")
-        json.dump(spec, open(path, "w"))
-        proc = subprocess.run([matpoint, "run", path, "--out", out, "--quiet", "--threads", "1"],
-                              capture_output=True, text=True)
-        summary = json.load(open(os.path.join(out, "summary.json")))
-        rows = list(csv.DictReader(open(os.path.join(out, "history.csv"))))
+    result = run_spec(matpoint, spec)
+    summary, rows = result.summary, result.history
     e0 = summary["initial"]["total_energy"]
     final = summary["final"]
     loss = 1 - (final["total_energy"] + final.get("friction_work", 0.0)) / e0
     com = [[(float(r[f"body{b}_com_x"]), float(r[f"body{b}_com_y"])) for b in (0, 1)] for r in rows]
     return {"loss": loss, "friction": final.get("friction_work", 0.0) / e0, "com": com,
-            "ok": proc.returncode == 0, "time": summary["step_wall_seconds"]}
+            "ok": result.ok, "time": summary["step_wall_seconds"]}
 
 
 def distance(a, b):
@@ -70,7 +54,7 @@ def main():
     parser.add_argument("--separation", type=float, default=None,
                         help="contact.separation (position criterion, cells); default: approach test only")
     args = parser.parse_args()
-    base = load_input()
+    base = load_input(HERE)
     flip = {"transfer": "flip"}
     fmpm = lambda k: {"transfer": "fmpm", "fmpm": {"order": k}}
     mus = [float(m) for m in args.mus.split(",")]

@@ -7,15 +7,13 @@ Columns: the signed extreme of (E(t) - E(0)) / E(0) over all output times, the f
 smallest det F, and the run status (exit code 3 = stopped by a numerical guard).
 """
 import argparse
-import csv
-import json
 import os
-import re
-import subprocess
 import sys
-import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+from example_tools import load_input, run_spec, variant  # noqa: E402
+
 SCHEMES = ["usl", "usf", "musl", "usavg"]
 TRANSFERS = [  # (label, solver keys)
     ("FLIP alpha=1", {"transfer": "flip", "position_alpha": 1.0}),
@@ -26,34 +24,18 @@ TRANSFERS = [  # (label, solver keys)
 SHAPES = ["bspline2", "linear"]
 
 
-def load_input():
-    with open(os.path.join(HERE, "input.json")) as f:
-        text = f.read()
-    text = re.sub(r"^\s*//.*$", "", text, flags=re.MULTILINE)  # the example uses whole-line comments only
-    return json.loads(text)
-
-
 def run_case(matpoint, base, shape, scheme, transfer_keys, end_time):
-    spec = json.loads(json.dumps(base))
-    solver = spec["solver"]
-    solver.update({"scheme": scheme, "shape": shape, "end_time": end_time})
-    for key in ("transfer", "position_alpha", "flip_fraction"):
-        solver.pop(key, None)
-    solver.update(transfer_keys)
+    spec = variant(base, solver=dict({"scheme": scheme, "shape": shape, "end_time": end_time}, **transfer_keys),
+                   drop_solver=("transfer", "position_alpha", "flip_fraction"),
+                   output={"every_time": 0.05, "particles": False, "plots": False})
     spec["checks"] = []
-    spec["output"] = {"every_time": 0.05, "particles": False, "plots": False}
-    with tempfile.TemporaryDirectory() as out:
-        path = os.path.join(out, "input.json")
-        with open(path, "w") as f:
-            json.dump(spec, f)
-        proc = subprocess.run([matpoint, "run", path, "--out", out, "--quiet", "--threads", "1"],
-                              capture_output=True, text=True)
-        rows = list(csv.DictReader(open(os.path.join(out, "history.csv"))))
+    result = run_spec(matpoint, spec)
+    rows = result.history
     e0 = float(rows[0]["total_energy"])
     errors = [(float(r["total_energy"]) - e0) / e0 for r in rows]
     extreme = max(errors, key=abs)
     min_j = min(float(r["min_jacobian"]) for r in rows)
-    status = "ok" if proc.returncode == 0 else f"exit {proc.returncode} at t={float(rows[-1]['time']):.2f}"
+    status = "ok" if result.ok else f"exit {result.returncode} at t={float(rows[-1]['time']):.2f}"
     return extreme, errors[-1], min_j, status
 
 
@@ -62,7 +44,7 @@ def main():
     parser.add_argument("matpoint", nargs="?", default=os.path.join(HERE, "..", "..", "build", "matpoint"))
     parser.add_argument("--end-time", type=float, default=3.0)
     args = parser.parse_args()
-    base = load_input()
+    base = load_input(HERE)
     print("| basis | scheme | transfer | extreme energy error | final energy error | min det F | status |")
     print("|---|---|---|---|---|---|---|")
     for shape in SHAPES:
