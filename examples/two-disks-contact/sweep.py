@@ -4,7 +4,7 @@
 largest distance between the FMPM(4) and FLIP centre-of-mass trajectories (Fig. 8).
 
 Usage: python3 examples/two-disks-contact/sweep.py [MATPOINT] [--cell 3.3333333333e-4] [--jobs N]
-       [--orders 1,2,3,4,6,8,10] [--mus 0,0.3,0.6] [--separation CELLS]
+       [--orders 1,2,3,4,6,8,10] [--mus 0,0.3,0.6] [--separation CELLS] [--normals NAME]
 Prints Markdown tables. The paper's cell is 1/3 mm (the default); input.json's 1 mm is the CI size.
 """
 import argparse
@@ -18,11 +18,11 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
 from example_tools import load_input, run_spec, variant  # noqa: E402
 
 
-def case(base, cell, transfer, mu, separation=None):
+def case(base, cell, transfer, mu, separation=None, normals=None):
     spec = variant(base, solver=transfer, output={"every_time": 4e-6, "particles": False, "plots": False})
     spec["grid"]["cell_size"] = cell
     spec["contact"] = {"law": "coulomb", "friction": mu} if mu > 0 else {"law": "frictionless"}
-    spec["contact"]["normals"] = base["contact"].get("normals", "average")
+    spec["contact"]["normals"] = normals or base["contact"].get("normals", "average")
     if separation is not None:
         spec["contact"]["separation"] = separation
     spec.pop("checks", None)
@@ -53,6 +53,8 @@ def main():
     parser.add_argument("--mus", default="0,0.3,0.6")
     parser.add_argument("--separation", type=float, default=None,
                         help="contact.separation (position criterion, cells); default: approach test only")
+    parser.add_argument("--normals", default=None,
+                        help="contact.normals (average, mass_gradient, logistic_regression); default: the input's")
     args = parser.parse_args()
     base = load_input(HERE)
     flip = {"transfer": "flip"}
@@ -60,15 +62,15 @@ def main():
     mus = [float(m) for m in args.mus.split(",")]
     cases = {}
     for mu in mus:
-        cases[("FLIP", mu)] = case(base, args.cell, flip, mu, args.separation)
-        cases[("FMPM(4)", mu)] = case(base, args.cell, fmpm(4), mu, args.separation)
+        cases[("FLIP", mu)] = case(base, args.cell, flip, mu, args.separation, args.normals)
+        cases[("FMPM(4)", mu)] = case(base, args.cell, fmpm(4), mu, args.separation, args.normals)
     for k in (int(k) for k in args.orders.split(",") if k):
-        cases.setdefault((f"FMPM({k})", 0.3), case(base, args.cell, fmpm(k), 0.3, args.separation))
+        cases.setdefault((f"FMPM({k})", 0.3), case(base, args.cell, fmpm(k), 0.3, args.separation, args.normals))
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         futures = {key: pool.submit(run, args.matpoint, spec) for key, spec in cases.items()}
         results = {key: f.result() for key, f in futures.items()}
     note = lambda r: "" if r["ok"] else " (stopped: numerical failure)"
-    print(f"cell = {args.cell * 1e3:.4g} mm, separation = {args.separation}\n")
+    print(f"cell = {args.cell * 1e3:.4g} mm, separation = {args.separation}, normals = {args.normals}\n")
     print("| mu | FLIP loss | FMPM(4) loss | FLIP friction work | FMPM(4) friction work | max COM distance FMPM(4) - FLIP |")
     print("|---|---|---|---|---|---|")
     for mu in mus:

@@ -138,6 +138,45 @@ TEST(StickContact, FmpmEvolvingAlsoReproducesTheSingleFieldRun) {
             1e-10);
 }
 
+// --- logistic-regression normals: the gap test of the deformed particle extents ---
+
+/// Largest change of any particle velocity after `steps` steps of two blocks that approach at
+/// +/-1 m/s with a gap of half a cell between their particle domains (they share the nodes on
+/// x = 0.5 from the start, but their domains meet only at t = 0.0125 s, about 9 steps).
+double largest_velocity_change_before_touching(const std::string& normals, int steps) {
+  const std::string input = R"({
+    "grid": { "dim": 2, "min": [0, 0], "max": [1, 0.5], "cell_size": 0.05 },
+    "materials": [ { "name": "m", "model": "neo_hookean", "density": 1000, "E": 1e5, "nu": 0.3 } ],
+    "bodies": [
+      { "name": "a", "material": "m", "shape": { "type": "box", "min": [0.1, 0.1], "max": [0.5, 0.3] },
+        "velocity": [1, 0] },
+      { "name": "b", "material": "m", "shape": { "type": "box", "min": [0.525, 0.1], "max": [0.9, 0.3] },
+        "velocity": [-1, 0] } ],
+    "solver": { "scheme": "usl", "transfer": "flip", "courant": 0.3, "end_time": 1 },
+    "output": { "particles": false, "plots": false },
+    "contact": { "law": "frictionless", "normals": ")" +
+                            normals + R"(" } })";
+  Simulation<2> sim = build_simulation<2>(parse_spec(input));
+  const auto initial = sim.particles.v;
+  const double dt = stable_time_step(sim);
+  EXPECT_LT(steps * dt, 0.0125);  // still apart at the end
+  ExplicitStepper<2, FieldStencils<2, Linear>> stepper(sim);
+  for (int s = 0; s < steps; ++s) stepper.step(dt);
+  double largest = 0.0;
+  for (std::size_t p = 0; p < initial.size(); ++p)
+    largest = std::max(largest, (sim.particles.v[p] - initial[p]).norm());
+  return largest;
+}
+
+TEST(LogisticContact, BodiesWithAGapBetweenTheirDomainsDoNotTouch) {
+  // Nairn 2026 §3.2 step 4: contact needs N_c > 0 and delta_n < 0. Approaching alone (the
+  // "average" normal's test) already applies contact on the shared nodes; the regression gap
+  // delta_n = 0.5 cell - 2 v t > 0 keeps the rigidly translating blocks untouched: no stress, so
+  // every particle velocity stays exactly the initial one.
+  EXPECT_EQ(largest_velocity_change_before_touching("logistic_regression", 6), 0.0);
+  EXPECT_GT(largest_velocity_change_before_touching("average", 6), 0.1);
+}
+
 // --- input errors name the JSON path (exit 2 before any work) ---
 
 /// The paths of the issues parse_spec reports for the two-block input with `contact`.

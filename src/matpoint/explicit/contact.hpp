@@ -12,9 +12,12 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <span>
 #include <vector>
 
 #include "matpoint/explicit/contact_law.hpp"
+#include "matpoint/explicit/logistic_normal.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/particles/particle_set.hpp"
@@ -64,7 +67,9 @@ class MultiFieldContact {
     gradient_.assign(mass.size(), Vec<D>::Zero());
     const bool positions = spec_.separation.has_value();
     if (positions) position_.assign(mass.size(), Vec<D>::Zero());
-    const bool by_volume = spec_.normals == ContactNormals::Average;
+    const bool by_volume = spec_.normals != ContactNormals::MassGradient;
+    const bool logistic = spec_.normals == ContactNormals::Logistic;
+    if (logistic) collect_start();
     for (std::size_t p = 0; p < particles.size(); ++p) {
       const double w = by_volume ? particles.volume(p) : particles.mass[p];
       const double m = particles.mass[p];
@@ -72,10 +77,17 @@ class MultiFieldContact {
       stencils.for_each_node(grid, p, [&](Index node, double N, const auto& dN) {
         gradient_[node] += w * dN;
         if (positions) position_[node] += (m * N) * x;
+        if (logistic) collect(node, p);
       });
     }
-    for (auto& e : entries_) set_normal(e, mass);
+    for (auto& e : entries_) {
+      set_normal(e, mass);
+      if (logistic && e.kind != Kind::Rest) set_logistic_normal(e, grid, particles);
+    }
   }
+
+  /// Logistic-regression nodes whose fit failed and kept the average normal (diagnostics).
+  [[nodiscard]] std::size_t logistic_fallbacks() const { return logistic_fallbacks_; }
 
   /// Sets the rigid fields' node values to their prescribed velocity at t (times the node mass
   /// when `x` holds momenta).
@@ -195,6 +207,62 @@ class MultiFieldContact {
     }
   }
 
+  /// Logistic regression: which particles see each contact node (grid-node slots, reused).
+  void collect_start() {
+    slot_of_node_.assign(static_cast<std::size_t>(nodes_), -1);
+    int slots = 0;
+    for (const auto& e : entries_)
+      if (slot_of_node_[e.node] < 0) slot_of_node_[e.node] = slots++;
+    if (seen_by_.size() < static_cast<std::size_t>(slots)) seen_by_.resize(slots);
+    for (int k = 0; k < slots; ++k) seen_by_[k].clear();
+  }
+
+  void collect(Index node, std::size_t p) {
+    const Index i = node % nodes_;
+    const int slot = slot_of_node_[i];
+    if (slot >= 0) seen_by_[slot].push_back({p, static_cast<int>(node / nodes_)});
+  }
+
+  /// Nairn's normal and gap: the regression normal of the particles of a (-1) and b (+1) that see
+  /// the node, and delta_n = min_b (x . n - R(n)) - max_a (x . n + R(n)) with R(n) the deformed
+  /// half-extent of the particle along n (extraction §2.5). In contact needs delta_n below
+  /// `separation` cells (default 0). A failed fit keeps the average normal and its test.
+  void set_logistic_normal(Entry& e, const Grid<D>& grid, const ParticleSet<D>& particles) {
+    const Vec<D> origin = grid.node_position(e.node);
+    const Vec<D> inverse_h = grid.h.cwiseInverse();
+    points_.clear();
+    for (const auto& s : seen_by_[slot_of_node_[e.node]]) {
+      if (s.field != e.a && s.field != e.b) continue;
+      points_.push_back(
+          {(particles.x[s.particle] - origin).cwiseProduct(inverse_h), s.field == e.a ? -1.0 : 1.0});
+    }
+    const auto fit = logistic_normal<D>(std::span<const LabelledPoint<D>>(points_));
+    if (!fit.found) {
+      ++logistic_fallbacks_;
+      return;
+    }
+    e.normal = fit.normal;
+    double a_front = -std::numeric_limits<double>::infinity(),
+           b_back = std::numeric_limits<double>::infinity();
+    for (const auto& s : seen_by_[slot_of_node_[e.node]]) {
+      if (s.field != e.a && s.field != e.b) continue;
+      const double along = particles.x[s.particle].dot(e.normal);
+      const double extent = half_extent(particles, s.particle, e.normal);
+      if (s.field == e.a)
+        a_front = std::max(a_front, along + extent);
+      else
+        b_back = std::min(b_back, along - extent);
+    }
+    e.touching = b_back - a_front < spec_.separation.value_or(0.0) * cell_size_;
+  }
+
+  /// Half-extent of particle p's deformed domain along the unit vector n: sum over its edges
+  /// r_k = F e_k l_k / 2 of |r_k . n| (CPDI's |r1 . n| + |r2 . n|).
+  static double half_extent(const ParticleSet<D>& particles, std::size_t p, const Vec<D>& n) {
+    const Vec<D> projected = particles.F[p].transpose() * n;
+    return 0.5 * projected.cwiseAbs().dot(particles.size0[p]);
+  }
+
   template <class Velocity>
   Vec<D> change_to_common(const Entry& e, const std::vector<double>& mass, const Velocity& v) const {
     const Index ia = at(e.a, e.node);
@@ -263,6 +331,14 @@ class MultiFieldContact {
   std::vector<ContactLawSpec> laws_;                       // by field pair (a * fields + b)
   std::vector<Entry> entries_;
   std::vector<Vec<D>> gradient_, position_;  // by multi-field node: sum w_p grad S, sum M_p S x_p
+  struct Seen {
+    std::size_t particle;
+    int field;
+  };
+  std::vector<int> slot_of_node_;           // logistic regression: grid node -> slot, or -1
+  std::vector<std::vector<Seen>> seen_by_;  // by slot: the particles whose stencil has the node
+  std::vector<LabelledPoint<D>> points_;    // scratch for one fit
+  std::size_t logistic_fallbacks_ = 0;
 };
 
 }  // namespace matpoint

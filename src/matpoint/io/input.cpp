@@ -159,8 +159,10 @@ constexpr std::array<Named<MaterialModel>, 4> kModels{{{"linear_elastic", Materi
 constexpr std::array<Named<ContactLaw>, 3> kContactLaws{{{"stick", ContactLaw::Stick},
                                                          {"frictionless", ContactLaw::Frictionless},
                                                          {"coulomb", ContactLaw::Coulomb}}};
-constexpr std::array<Named<ContactNormals>, 2> kContactNormals{
-    {{"mass_gradient", ContactNormals::MassGradient}, {"average", ContactNormals::Average}}};
+constexpr std::array<Named<ContactNormals>, 3> kContactNormals{
+    {{"mass_gradient", ContactNormals::MassGradient},
+     {"average", ContactNormals::Average},
+     {"logistic_regression", ContactNormals::Logistic}}};
 constexpr std::array<Named<ContactFmpmMethod>, 2> kContactFmpmMethods{
     {{"net", ContactFmpmMethod::Net}, {"evolving", ContactFmpmMethod::Evolving}}};
 constexpr std::array<Named<bool>, 2> kContactFields{{{"bodies", false}, {"materials", true}}};

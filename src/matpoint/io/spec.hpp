@@ -187,8 +187,9 @@ struct CheckSpec {
 /// Multimaterial contact (Nairn 2026 §3.2; docs/theory/contact.md): each body (or material) gets
 /// its own grid velocity field, and nodes shared by two or more fields get a contact law.
 enum class ContactLaw { Stick, Frictionless, Coulomb };
-enum class ContactNormals { MassGradient, Average };  // one field's mass gradient, or both volume gradients
-enum class ContactFmpmMethod { Net, Evolving };       // increments inside the FMPM loop (§3.2)
+// one field's mass gradient, both fields' volume gradients, or Nairn's logistic regression
+enum class ContactNormals { MassGradient, Average, Logistic };
+enum class ContactFmpmMethod { Net, Evolving };  // increments inside the FMPM loop (§3.2)
 
 struct ContactLawSpec {
   ContactLaw law = ContactLaw::Stick;
