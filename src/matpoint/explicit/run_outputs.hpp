@@ -1,0 +1,164 @@
+// What a run writes while it goes: the output schedule, history.csv and the particle (and domain)
+// .vtu files with their .pvd collections (docs/output.md). Every file is written atomically.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+#include "matpoint/analysis/diagnostics.hpp"
+#include "matpoint/analysis/grid_modes.hpp"
+#include "matpoint/analysis/history.hpp"
+#include "matpoint/explicit/simulation.hpp"
+#include "matpoint/io/atomic_file.hpp"
+#include "matpoint/io/checkpoint.hpp"
+#include "matpoint/io/spec.hpp"
+#include "matpoint/io/vtk_writer.hpp"
+#include "matpoint/shape/domains.hpp"
+
+namespace matpoint {
+
+/// Decides which steps write output.
+class OutputSchedule {
+ public:
+  /// `next_time`: the next output time of an every_time schedule (a restart's, or every_time).
+  OutputSchedule(const OutputSpec& o, double time, double next_time) : spec_(o), next_time_(next_time) {
+    const double every = o.every_time;  // a restart may change every_time: start on its next multiple
+    if (every > 0 && !(next_time_ > time && next_time_ <= time + every * (1 + 1e-9)))
+      next_time_ = (std::floor(time / every) + 1) * every;
+  }
+  bool due(long step, double time, double dt) {
+    if (spec_.every_steps > 0) return step % spec_.every_steps == 0;
+    if (spec_.every_time > 0 && time >= next_time_ - 1e-6 * dt) {
+      while (next_time_ <= time + 1e-6 * dt) next_time_ += spec_.every_time;
+      return true;
+    }
+    return false;
+  }
+  [[nodiscard]] double next_time() const { return next_time_; }
+
+ private:
+  OutputSpec spec_;
+  double next_time_;
+};
+
+namespace run_outputs_detail {
+
+template <int D>
+std::array<double, 3> pad(const Vec<D>& v) {
+  std::array<double, 3> out{};
+  for (int a = 0; a < D; ++a) out[a] = v[a];
+  return out;
+}
+
+inline std::string output_name(long index, const char* prefix) {
+  std::ostringstream name;
+  name << prefix << std::setw(6) << std::setfill('0') << index << ".vtu";
+  return name.str();
+}
+
+}  // namespace run_outputs_detail
+
+/// One history.csv row of the simulation's present state.
+template <int D>
+HistorySample history_sample(const Simulation<D>& sim, int body_count) {
+  using run_outputs_detail::pad;
+  const auto d = measure_diagnostics(sim, body_count);
+  HistorySample s;
+  s.time = sim.time;
+  s.step = sim.step;
+  s.kinetic_energy = d.kinetic_energy;
+  s.strain_energy = d.strain_energy;
+  s.external_work = sim.external_work;
+  s.friction_work = sim.friction_work;
+  s.momentum = pad<D>(d.momentum);
+  s.external_impulse = pad<D>(sim.external_impulse);
+  s.min_jacobian = d.min_jacobian;
+  s.rms_velocity_change = d.rms_velocity_change;
+  s.body_kinetic = d.body_kinetic;
+  s.body_strain = d.body_strain;
+  s.body_mass = d.body_mass;
+  s.grid_momentum_difference = pad<D>(sim.grid_momentum_difference);
+  const GridModes modes = measure_grid_modes(sim.grid, sim.fields.mass, sim.fields.velocity_new);
+  s.checkerboard_velocity = modes.checkerboard_velocity;
+  s.grid_rms_velocity = modes.rms_velocity;
+  s.hourglass_energy = modes.hourglass_energy;
+  for (int b = 0; b < body_count; ++b) {
+    s.body_momentum.push_back(pad<D>(d.body_momentum[b]));
+    s.body_com_velocity.push_back(pad<D>(Vec<D>(d.body_momentum[b] / std::max(d.body_mass[b], 1e-300))));
+    s.body_com_position.push_back(pad<D>(d.body_com_position[b]));
+  }
+  return s;
+}
+
+/// The run's output folder: history (kept in memory whole, so the checks see every row) and the
+/// particle states. history.csv is rewritten whole (atomically) at most once a second, with
+/// every particle output, and at the end: rewriting it at each of many frequent outputs would
+/// cost O(n^2).
+template <int D>
+class RunOutputs {
+ public:
+  /// `run` carries the counters and the .pvd entries of a restart (zero at a fresh start).
+  RunOutputs(const Spec& spec, std::filesystem::path out_dir, History history, const RunCounters& run)
+      : spec_(spec),
+        out_dir_(std::move(out_dir)),
+        history_(std::move(history)),
+        body_count_(static_cast<int>(spec.bodies.size())),
+        pvd_(out_dir_ / "results.pvd"),
+        domains_pvd_(out_dir_ / "domains.pvd"),  // GIMP / CPDI particle domains
+        write_domains_(spec.output.particles && has_particle_domains(spec.solver.shape)),
+        outputs_(run.outputs) {
+    pvd_.restore(run.results);  // a restart rewrites them as the checkpoint knew them
+    domains_pvd_.restore(run.domains);
+  }
+
+  /// Appends the present state to the history and, with `output.particles`, writes its .vtu.
+  void record(const Simulation<D>& sim) {
+    history_.samples.push_back(history_sample(sim, body_count_));
+    if (spec_.output.particles ||
+        std::chrono::steady_clock::now() - last_history_write_ > std::chrono::seconds(1))
+      write_history();
+    if (spec_.output.particles) {
+      const std::string name = run_outputs_detail::output_name(outputs_, "particles_");
+      write_file_atomically(out_dir_ / name, particles_vtu(sim.particles, spec_.output.fields));
+      pvd_.add(sim.time, name);
+      if (write_domains_) {
+        const std::string domains = run_outputs_detail::output_name(outputs_, "domains_");
+        const auto corners = particle_domains<D>(spec_.solver.shape, sim.grid, sim.particles);
+        write_file_atomically(out_dir_ / domains, domains_vtu<D>(corners, sim.particles));
+        domains_pvd_.add(sim.time, domains);
+      }
+    }
+    ++outputs_;
+  }
+
+  void write_history() {
+    write_file_atomically(out_dir_ / "history.csv", history_.csv());
+    last_history_write_ = std::chrono::steady_clock::now();
+  }
+
+  /// Output states written so far: the index of the next .vtu file.
+  [[nodiscard]] long count() const { return outputs_; }
+  [[nodiscard]] const History& history() const { return history_; }
+  [[nodiscard]] History take_history() { return std::move(history_); }
+  [[nodiscard]] PvdEntries results_entries() const { return pvd_.entries(); }
+  [[nodiscard]] PvdEntries domains_entries() const { return domains_pvd_.entries(); }
+
+ private:
+  const Spec& spec_;
+  std::filesystem::path out_dir_;
+  History history_;
+  int body_count_;
+  PvdCollection pvd_, domains_pvd_;
+  bool write_domains_;
+  long outputs_;
+  std::chrono::steady_clock::time_point last_history_write_ =
+      std::chrono::steady_clock::now() - std::chrono::hours(1);
+};
+
+}  // namespace matpoint
