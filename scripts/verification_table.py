@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerates the benchmark table of docs/verification.md: scripts/verification_table.py [--build DIR]
 
-Runs every example that carries reference checks (examples/*/input.json with "checks") and the
+Runs every example input that carries reference checks (examples/*/input*.json with "checks") and the
 built-in verification problems (`matpoint verify --json`), then rewrites the part of
 docs/verification.md between the markers
 
@@ -31,17 +31,19 @@ def strip_comments(text):
 
 
 def examples_with_checks():
+    """(example, input file) of every examples/NAME/input*.json that carries checks."""
     folder = os.path.join(ROOT, "examples")
     for name in sorted(os.listdir(folder)):
-        path = os.path.join(folder, name, "input.json")
-        if not os.path.exists(path):
-            continue
-        try:
-            spec = json.loads(strip_comments(open(path).read()))
-        except ValueError:
-            spec = {"checks": [True]}  # block comments: let matpoint read it
-        if spec.get("checks"):
-            yield name, path
+        inputs = sorted(f for f in os.listdir(os.path.join(folder, name))
+                        if f.startswith("input") and f.endswith(".json"))
+        for file in sorted(inputs, key=lambda f: f != "input.json"):  # the main input first
+            path = os.path.join(folder, name, file)
+            try:
+                spec = json.loads(strip_comments(open(path).read()))
+            except ValueError:
+                spec = {"checks": [True]}  # block comments: let matpoint read it
+            if spec.get("checks"):
+                yield name, file, path
 
 
 def fmt(x):
@@ -66,17 +68,18 @@ def save_figures(name, out):
                 g.write(f.read())
 
 
-def run_example(matpoint, name, path, figures=False):
-    out = os.path.join(ROOT, "out", "verification", name)
+def run_example(matpoint, name, file, path, figures=False):
+    label = name if file == "input.json" else f"{name}/{file}"
+    out = os.path.join(ROOT, "out", "verification", label.replace("/", "-").removesuffix(".json"))
     result = subprocess.run([matpoint, "run", path, "--out", out, "--quiet"], capture_output=True, text=True)
     summary_file = os.path.join(out, "summary.json")
     if result.returncode != 0 or not os.path.exists(summary_file):
-        return [(name, "run", "exit 0", "", f"exit {result.returncode}", "FAIL", result.stderr.strip()[-200:])]
-    if figures:
+        return [(label, "run", "exit 0", "", f"exit {result.returncode}", "FAIL", result.stderr.strip()[-200:])]
+    if figures and file == "input.json":
         save_figures(name, out)
     rows = []
     for c in json.load(open(summary_file)).get("checks", []):
-        rows.append((f"examples/{name}", c["name"], fmt(c["expected"]), fmt(c["tolerance"]), fmt(c["measured"]),
+        rows.append((f"examples/{label}", c["name"], fmt(c["expected"]), fmt(c["tolerance"]), fmt(c["measured"]),
                      "pass" if c["pass"] else "FAIL", c.get("source", "")))
     return rows
 
@@ -113,9 +116,9 @@ def main():
     if not os.path.exists(matpoint):
         sys.exit(f"verification_table.py: {matpoint} not found (run scripts/setup.sh)")
     rows = []
-    for name, path in examples_with_checks():
-        print(f"running examples/{name}", file=sys.stderr)
-        rows += run_example(matpoint, name, path, args.figures)
+    for name, file, path in examples_with_checks():
+        print(f"running examples/{name}/{file}", file=sys.stderr)
+        rows += run_example(matpoint, name, file, path, args.figures)
     print("running matpoint verify", file=sys.stderr)
     rows += run_verify(matpoint)
 

@@ -14,8 +14,8 @@
 
 namespace matpoint::test {
 
-inline Spec load_example(const std::string& name) {
-  return load_spec(std::filesystem::path(MATPOINT_EXAMPLES_DIR) / name / "input.json");
+inline Spec load_example(const std::string& name, const std::string& file = "input.json") {
+  return load_spec(std::filesystem::path(MATPOINT_EXAMPLES_DIR) / name / file);
 }
 
 /// A scratch folder of this test process: /tmp/matpoint_test_<pid>_<tag>. The process id keeps

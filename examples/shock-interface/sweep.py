@@ -5,7 +5,7 @@ with --interface, the bar split at x = 40 mm into two materials joined by stick 
 contact (Net and Evolving increments, Fig. 5).
 
 Usage: /usr/bin/python3 examples/shock-interface/sweep.py [MATPOINT] [--orders 1,2,4,6,8,16]
-       [--out out/shock-sweep] [--threads 2] [--courant C] [--interface] [--normals average]
+       [--out out/shock-sweep] [--threads 2] [--courant C] [--interface] [--normals logistic_regression]
 Without --courant the input's dt (6.76 ns) is used; --courant C replaces it with C h / C0.
 Prints a Markdown table; writes profiles.png (needs matplotlib) and profiles.csv into --out.
 Reads the last particles_*.vtu of each run with meshio.
@@ -84,7 +84,7 @@ def main():
     parser.add_argument("--interface", action="store_true",
                         help="the split bar: stick and frictionless interfaces, Net and Evolving, "
                              "against the single-material FMPM(4)")
-    parser.add_argument("--normals", default="average", help="contact.normals of the split bar")
+    parser.add_argument("--normals", default="logistic_regression", help="contact.normals of the split bar")
     args = parser.parse_args()
     base = load_input(HERE)
     if args.courant is not None:

@@ -581,5 +581,22 @@ TEST(InputMemory, RefusesAProblemLargerThanTheAvailableMemoryWithTheEstimate) {
   }
 }
 
+TEST(InputMemory, ContactCountsTheGridOncePerVelocityField) {
+  const std::string bodies = R"({"grid": {"dim": 2, "min": [0, 0], "max": [1, 1], "cell_size": 0.01},
+    "materials": [{"name": "m", "model": "linear_elastic", "density": 1, "E": 1, "nu": 0.3}],
+    "bodies": [{"material": "m", "shape": {"type": "box", "min": [0, 0], "max": [0.3, 0.3]}},
+               {"material": "m", "shape": {"type": "box", "min": [0.5, 0.5], "max": [0.9, 0.9]}},
+               {"material": "m", "shape": {"type": "disk", "center": [0.2, 0.7], "radius": 0.1}}],
+    "solver": {"end_time": 1})";
+  const MemoryEstimate plain = estimate_memory(parse_spec(bodies + "}"));
+  const MemoryEstimate contact =
+      estimate_memory(parse_spec(bodies + R"(, "contact": {"law": "frictionless"}})"));
+  EXPECT_EQ(plain.fields, 1);
+  EXPECT_EQ(contact.fields, 3);
+  EXPECT_EQ(contact.particles, plain.particles);
+  // Two more fields of at least mass + 8 vectors (16 bytes each in 2-D) per node.
+  EXPECT_GE(contact.bytes - plain.bytes, 2 * plain.nodes * (8.0 + 8 * 16.0));
+}
+
 }  // namespace
 }  // namespace matpoint

@@ -1,12 +1,12 @@
 #include "matpoint/io/memory_estimate.hpp"
 
-#include "matpoint/core/errors.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include "matpoint/core/errors.hpp"
 
 namespace matpoint {
 
@@ -60,13 +60,17 @@ MemoryEstimate estimate_memory(const Spec& spec) {
     }
     e.particles += count;
   }
+  // Contact keeps every grid array once per velocity field (body or material, field_stencils.hpp).
+  if (spec.contact.enabled)
+    e.fields = static_cast<int>(spec.contact.by_material ? spec.materials.size() : spec.bodies.size());
   // Per particle: x, v, size0, F, stress, L, mass, volume0, ids, the step's stencil (weights and
-  // gradients), scratch of the transfers; per node: mass, 6 vectors, the threads' scatter bands.
+  // gradients), scratch of the transfers; per node and field: mass, 6 vectors, the threads'
+  // scatter bands, and with contact the gradient and position sums of the normals.
   const double vec = 8.0 * d, mat = 8.0 * d * d;
   const double width = std::pow(stencil_width(spec.solver.shape), d);
   const double per_particle = 3 * vec + 3 * mat + 40 + 2 * vec + width * (8.0 + vec) + (1 << d) * vec;
-  const double per_node = 8.0 + 8 * vec + 2 * (8.0 + 2 * vec);
-  e.bytes = e.particles * per_particle + e.nodes * per_node;
+  const double per_field_node = 8.0 + 8 * vec + 2 * (8.0 + 2 * vec) + (spec.contact.enabled ? 2 * vec : 0.0);
+  e.bytes = e.particles * per_particle + e.nodes * e.fields * per_field_node;
   return e;
 }
 
@@ -86,7 +90,8 @@ void check_memory(const Spec& spec, std::optional<double> available) {
   if (e.bytes <= *available) return;
   std::ostringstream value, expected;
   value.precision(3);
-  value << "about " << e.particles << " particles and " << e.nodes << " nodes, needing about " << gigabytes(e.bytes);
+  value << "about " << e.particles << " particles and " << e.nodes << " nodes, needing about "
+        << gigabytes(e.bytes);
   expected << "a problem that fits in the " << gigabytes(*available)
            << " of memory available (coarser grid.cell_size or fewer particles_per_cell)";
   throw InputError({{"bodies", value.str(), expected.str()}});

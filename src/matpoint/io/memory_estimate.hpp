@@ -3,16 +3,17 @@
 // number instead of an out-of-memory kill (issue 8, "input safety").
 #pragma once
 
-#include "matpoint/io/spec.hpp"
-
 #include <cstdint>
 #include <optional>
+
+#include "matpoint/io/spec.hpp"
 
 namespace matpoint {
 
 struct MemoryEstimate {
   double particles = 0;  // upper estimate: every sub-cell centre of each body's bounding box
   double nodes = 0;
+  int fields = 1;  // grid velocity fields: one, or with contact one per body (or material)
   double bytes = 0;
 };
 

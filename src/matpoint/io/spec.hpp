@@ -206,7 +206,7 @@ struct ContactSpec {
   bool by_material = false;  // one field per material instead of one per body
   ContactLawSpec law;        // every pair not listed in pairs
   std::vector<ContactPairSpec> pairs;
-  ContactNormals normals = ContactNormals::Average;
+  ContactNormals normals = ContactNormals::Logistic;
   std::optional<double> separation;  // position criterion: contact needs (x_b - x_a) . n < separation * h
   ContactFmpmMethod fmpm_method = ContactFmpmMethod::Net;
 };
