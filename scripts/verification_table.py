@@ -12,7 +12,8 @@ with one row per check: benchmark, check, expected, tolerance, measured, status,
 out/verification/. Exit 0 when every check passes, 1 otherwise (the table is written either way).
 
 --figures also redraws each example's plots at low resolution into examples/NAME/figures/
-(energy.png, and final_state.png for 2-D runs), the small pictures the example READMEs show.
+(energy.png, and final_state.png for 2-D runs) and shows them in examples/NAME/README.md between
+generated markers.
 """
 import argparse
 import json
@@ -61,11 +62,37 @@ def save_figures(name, out):
     subprocess.run([python, os.path.join(ROOT, "scripts", "plot_history.py"), out], env=env, check=False)
     folder = os.path.join(ROOT, "examples", name, "figures")
     os.makedirs(folder, exist_ok=True)
+    shown = []
     for plot in ("energy.png", "final_state.png"):
         source = os.path.join(out, "plots", plot)
         if os.path.exists(source):
             with open(source, "rb") as f, open(os.path.join(folder, plot), "wb") as g:
                 g.write(f.read())
+            shown.append(plot)
+    show_in_readme(os.path.join(ROOT, "examples", name, "README.md"), shown)
+
+
+FIGURES_BEGIN = "<!-- BEGIN GENERATED: figures (scripts/verification_table.py --figures) -->"
+
+
+def show_in_readme(readme, plots):
+    """Puts the plots into the example's README between generated markers (after the title
+    section, or replacing the previous block)."""
+    if not plots or not os.path.exists(readme):
+        return
+    captions = {"energy.png": "energies and momentum against time (`plots/energy.png` of the run)",
+                "final_state.png": "the particles at the end, coloured by a field (`plots/final_state.png`)"}
+    block = FIGURES_BEGIN + "\n" + "\n".join(
+        f"![{captions[p]}](figures/{p})" for p in plots) + "\n" + END
+    text = open(readme).read()
+    if FIGURES_BEGIN in text:
+        start = text.index(FIGURES_BEGIN)
+        text = text[:start] + block + text[text.index(END, start) + len(END):]
+    else:
+        text = text.rstrip() + "\n\n## Plots (the shipped input)\n" + block + "\n"
+    with open(readme + ".partial", "w") as f:
+        f.write(text)
+    os.replace(readme + ".partial", readme)
 
 
 def run_example(matpoint, name, file, path, figures=False):
