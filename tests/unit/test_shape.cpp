@@ -1,18 +1,20 @@
 // Shape functions: partition of unity, linear-field reproduction, zero gradient sum and gradient
 // consistency, everywhere in the domain including cells next to its edge.
-#include "matpoint/shape/tensor_bases.hpp"
-#include "matpoint/shape/tensor_stencils.hpp"
-
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <random>
+
+#include "matpoint/shape/tensor_bases.hpp"
+#include "matpoint/shape/tensor_stencils.hpp"
 
 namespace {
 
 using namespace matpoint;
 
-template <int D, class Basis> void check_basis(int cells) {
+template <int D, class Basis>
+void check_basis(int cells) {
   Vec<D> origin = Vec<D>::Constant(-0.3), h;
   std::array<int, D> n{};
   for (int a = 0; a < D; ++a) {
@@ -59,6 +61,25 @@ template <int D, class Basis> void check_basis(int cells) {
   }
 }
 
+TEST(Shape, FarOutsideOrNonFiniteCoordinatesStayDefined) {
+  // A diverging run can put a CPDI corner 1e10 cells away (UBSan, stability scan): the cell index
+  // is limited instead of overflowing int, and the folded window stays inside the grid.
+  EXPECT_EQ(floor_to_int(-2.5), -3);
+  EXPECT_EQ(floor_to_int(7.0), 7);
+  EXPECT_EQ(floor_to_int(1e300), 1 << 28);
+  EXPECT_EQ(floor_to_int(-1e300), -(1 << 28));
+  EXPECT_EQ(floor_to_int(std::nan("")), -(1 << 28));
+  for (double xi : {1e10, -1e10}) {
+    double w[kMaxKernelWidth], dw[kMaxKernelWidth];
+    const int start = point_on_grid<HatKernel>(xi, 10, w, dw);  // a window of nodes 0 .. 10
+    EXPECT_GE(start, 0);
+    EXPECT_LE(start, 10 - HatKernel::point_width + 1);
+    const int q = point_on_grid<QuadraticKernel>(xi, 10, w, dw);
+    EXPECT_GE(q, 0);
+    EXPECT_LE(q, 10 - QuadraticKernel::point_width + 1);
+  }
+}
+
 TEST(Shape, LinearIsPartitionOfUnityAndReproducesLinearFields) {
   check_basis<1, LinearBasis>(7);
   check_basis<2, LinearBasis>(7);
@@ -72,7 +93,8 @@ TEST(Shape, QuadraticBSplineIsPartitionOfUnityAndReproducesLinearFields) {
 }
 
 /// d N / dx equals the central finite difference of N for every node, away from kinks.
-template <class Basis> void check_gradient_is_derivative() {
+template <class Basis>
+void check_gradient_is_derivative() {
   const Grid<1> grid(Vec<1>(0.0), Vec<1>(0.25), {8}, Basis::ghost_layers);
   const double eps = 1e-7;
   for (double x : {0.11, 0.37, 0.61, 1.02, 1.33, 1.9}) {

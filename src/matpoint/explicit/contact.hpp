@@ -191,7 +191,7 @@ class MultiFieldContact {
     }
     // gradient_ holds sum_p w_p grad S_pi = -grad m(x_i): the outward normal of each field.
     Vec<D> n;
-    if (spec_.normals != ContactNormals::MassGradient)  // also the start (and fallback) of the regression
+    if (spec_.normals != ContactNormals::MassGradient)  // also the regression's fallback
       n = gradient_[ia] - other;
     else if (e.kind == Kind::Rigid || (e.kind == Kind::Pair && mass[at(e.b, e.node)] > mass[ia]))
       n = -other;

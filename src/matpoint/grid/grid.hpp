@@ -1,23 +1,24 @@
 // Uniform Cartesian background grid: geometry and node numbering.
 #pragma once
 
-#include "matpoint/core/types.hpp"
-
 #include <array>
 #include <cmath>
+
+#include "matpoint/core/types.hpp"
 
 namespace matpoint {
 
 /// Nodes sit at origin + i * h, i = -ghost .. cells + ghost per direction. Ghost layers lie
 /// outside the user's domain and exist only so that wide bases (B-splines) have every node they
 /// need next to the domain edge; boundary conditions on a face apply to its ghost nodes too.
-template <int D> struct Grid {
+template <int D>
+struct Grid {
   Vec<D> origin = Vec<D>::Zero();
   Vec<D> h = Vec<D>::Ones();
   std::array<int, D> cells{};
   int ghost = 0;
-  std::array<int, D> nodes{};      // per direction, ghosts included
-  std::array<Index, D> stride{};   // flat node index = sum (i_a + ghost) * stride_a
+  std::array<int, D> nodes{};     // per direction, ghosts included
+  std::array<Index, D> stride{};  // flat node index = sum (i_a + ghost) * stride_a
   Index node_count = 0;
 
   Grid() = default;
@@ -70,7 +71,7 @@ template <int D> struct Grid {
   [[nodiscard]] Index cell_index(const Vec<D>& x) const {
     Index c = 0, s = 1;
     for (int a = 0; a < D; ++a) {
-      int i = static_cast<int>(std::floor((x[a] - origin[a]) / h[a]));
+      int i = floor_to_int((x[a] - origin[a]) / h[a]);
       i = i < 0 ? 0 : (i >= cells[a] ? cells[a] - 1 : i);
       c += i * s;
       s *= cells[a];

@@ -40,8 +40,8 @@ class ParticleBins {
     std::array<int, D> lo{}, hi{};
     for (int a = 0; a < D; ++a) {
       const double s = (x[a] - grid_->origin[a]) / grid_->h[a];
-      lo[a] = std::max(0, static_cast<int>(std::floor(s - r)));
-      hi[a] = std::min(grid_->cells[a] - 1, static_cast<int>(std::ceil(s + r)) - 1);  // cell k starts at k
+      lo[a] = std::max(0, floor_to_int(s - r));
+      hi[a] = std::min(grid_->cells[a] - 1, -floor_to_int(-(s + r)) - 1);  // cell k starts at k
       if (lo[a] > hi[a]) return;
     }
     if constexpr (D == 1) {

@@ -21,6 +21,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "matpoint/core/types.hpp"
+
 namespace matpoint {
 
 /// Linear hat, support [-1, 1].
@@ -38,7 +40,7 @@ struct HatKernel {
     if (r <= 1.0) return 1.0 - 0.5 * (1.0 - r) * (1.0 - r);
     return 1.0;
   }
-  static int first_node(double xi) { return static_cast<int>(std::floor(xi)); }
+  static int first_node(double xi) { return floor_to_int(xi); }
   /// Weights and slopes of the two nodes of a cell at the local coordinate r in [0, 1].
   static void cell_weights(double r, double* w, double* dw) {
     w[0] = 1.0 - r;
@@ -71,7 +73,7 @@ struct QuadraticKernel {
     if (r <= 1.5) return 1.0 - (1.5 - r) * (1.5 - r) * (1.5 - r) / 6.0;
     return 1.0;
   }
-  static int first_node(double xi) { return static_cast<int>(std::floor(xi + 0.5)) - 1; }
+  static int first_node(double xi) { return floor_to_int(xi + 0.5) - 1; }
   static int point(double xi, double* w, double* dw) {
     const int i0 = first_node(xi);   // nodes i0 .. i0 + 2
     const double r = xi - (i0 + 1);  // in [-1/2, 1/2)
@@ -110,9 +112,9 @@ struct CubicKernel {
     if (r <= 2.0) return 1.0 - std::pow(2.0 - r, 4) / 24.0;
     return 1.0;
   }
-  static int first_node(double xi) { return static_cast<int>(std::floor(xi)) - 1; }
+  static int first_node(double xi) { return floor_to_int(xi) - 1; }
   static int point(double xi, double* w, double* dw) {
-    const int cell = static_cast<int>(std::floor(xi));
+    const int cell = floor_to_int(xi);
     const double t = xi - cell, s = 1.0 - t;
     w[0] = s * s * s / 6.0;
     w[1] = 2.0 / 3.0 - t * t + 0.5 * t * t * t;
@@ -184,7 +186,7 @@ inline int point_on_grid(double xi, int cells, double* w, double* dw) {
 template <class Kernel>
 inline int domain_on_grid(double xi, double l, int cells, double* w, double* dw) {
   constexpr int n = Kernel::point_width + 1;
-  const int i0 = static_cast<int>(std::floor(xi - l - Kernel::radius)) + 1;
+  const int i0 = floor_to_int(xi - l - Kernel::radius) + 1;
   const double inv = 0.5 / l;
   for (int k = 0; k < n; ++k) {
     const double d = xi - (i0 + k);

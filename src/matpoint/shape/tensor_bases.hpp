@@ -4,9 +4,9 @@
 // coordinate of its lowest node and the `width` weights and derivatives (per unit xi).
 #pragma once
 
-#include "matpoint/shape/kernels.hpp"
-
 #include <cmath>
+
+#include "matpoint/shape/kernels.hpp"
 
 namespace matpoint {
 
@@ -46,8 +46,8 @@ struct QuadraticBSplineBasis {
   static constexpr DomainWidth domain = DomainWidth::None;
 
   static int evaluate(double xi, int cells, double* w, double* dw) {
-    int i0 = static_cast<int>(std::floor(xi + 0.5)) - 1;  // nodes i0, i0+1, i0+2
-    const double r = xi - (i0 + 1);                         // in [-1/2, 1/2)
+    int i0 = floor_to_int(xi + 0.5) - 1;  // nodes i0, i0+1, i0+2
+    const double r = xi - (i0 + 1);       // in [-1/2, 1/2)
     const double a = 0.5 - r, b = 0.5 + r;
     w[0] = 0.5 * a * a;
     w[1] = 0.75 - r * r;
