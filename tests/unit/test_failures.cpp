@@ -7,6 +7,7 @@
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/courant_limits.hpp"
 #include "matpoint/explicit/explicit_step.hpp"
+#include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 #include "test_support.hpp"
@@ -101,6 +102,30 @@ TEST(Failures, NonFiniteDeformationGradientIsNamed) {
   const std::string message =
       failure_after(UpdateScheme::USF, [&](ParticleSet<2>& ps) { ps.F[3](1, 0) = nan; });
   EXPECT_NE(message.find("nan (needs > 0)"), std::string::npos) << message;  // glibc may print -nan
+}
+
+// A CPDI1 particle whose domain has grown past the grid (a stretch of 200 along x puts the corners of
+// its 0.025-wide domain 2.5 away, 30 cells beyond the unit grid of two-disks) stops the step that
+// would evaluate it,
+// naming the particle, its F and the grid; the folded basis alone would have gone on with
+// extrapolated weights (adcd7b7 found one at 1e10 cells in a diverging stability scan).
+TEST(Failures, DomainCornerFarOutsideTheGridIsNamed) {
+  Spec spec = test::load_example("two-disks");
+  spec.solver.shape = ShapeKind::CPDI1;
+  auto sim = build_simulation<2>(spec);
+  ExplicitStepper<2, CpdiStencils<2, HatKernel, CpdiDomain::Parallelogram>> stepper(sim);
+  stepper.step(1e-3);
+  sim.particles.F[5](0, 0) = 200.0;
+  std::string message = "no failure";
+  try {
+    stepper.step(1e-3);
+  } catch (const NumericalFailure& failure) {
+    EXPECT_EQ(failure.step(), 2);
+    message = failure.what();
+  }
+  EXPECT_NE(message.find("domain corner more than one cell outside the grid"), std::string::npos) << message;
+  EXPECT_NE(message.find("particle " + std::to_string(sim.particles.id[5])), std::string::npos) << message;
+  EXPECT_NE(message.find("det F = 200"), std::string::npos) << message;
 }
 
 TEST(Failures, CourantAboveTheMeasuredLimitWarnsInTheSummary) {

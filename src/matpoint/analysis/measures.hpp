@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 16> kMeasures{{
+inline constexpr std::array<MeasureInfo, 17> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |E(t) + D(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy, "
      "D = friction work (contact)"},
@@ -40,7 +40,11 @@ inline constexpr std::array<MeasureInfo, 16> kMeasures{{
      "v_amp = 2 v0 / pi, for the first-mode bar of examples/vibrating-bar-1d"},
     {"fitted_com_acceleration_x",
      "least-squares slope of the centre-of-mass x velocity against time over all output times (a body "
-     "under constant acceleration, e.g. examples/rolling-disk)"},
+     "under constant acceleration)"},
+    {"fitted_com_displacement_acceleration_x",
+     "a of the least-squares fit x(t) - x(0) = a t^2 / 2 over all output times, x the centre of mass of all "
+     "bodies: the acceleration of a body starting from rest, insensitive to velocity oscillations "
+     "(examples/rolling-disk)"},
     {"shock_plateau_stress",
      "at the end of the run, the median of -sigma_xx over the particles where -sigma_xx is at least half its "
      "largest value: the plateau behind a compressive shock moving along x (examples/shock-interface)"},

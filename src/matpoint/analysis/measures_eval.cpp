@@ -90,6 +90,27 @@ double fitted_com_acceleration_x(const History& h) {
   return (n * stv - st * sv) / (n * stt - st * st);
 }
 
+/// Least-squares a of x(t) - x(0) = a t^2 / 2 through every output, x the centre of mass of all
+/// bodies (a body starting from rest; the position integrates out the velocity's oscillations).
+double fitted_com_displacement_acceleration_x(const History& h) {
+  if (h.samples.size() < 3) return kNaN;
+  const auto com_x = [](const HistorySample& s) {
+    double mass = 0.0, moment = 0.0;
+    for (std::size_t b = 0; b < s.body_mass.size(); ++b) {
+      mass += s.body_mass[b];
+      moment += s.body_mass[b] * s.body_com_position[b][0];
+    }
+    return moment / mass;
+  };
+  const double x0 = com_x(h.samples.front()), t0 = h.samples.front().time;
+  double sqq = 0, sqx = 0;
+  for (const auto& s : h.samples) {
+    const double q = 0.5 * (s.time - t0) * (s.time - t0);
+    sqq += q * q, sqx += q * (com_x(s) - x0);
+  }
+  return sqx / sqq;
+}
+
 /// The block on a rigid incline (examples/incline-friction): gravity (g sin theta, -g cos theta).
 double sliding_block_error(const Spec& spec, const History& h) {
   if (h.samples.size() < 2) return kNaN;
@@ -128,6 +149,8 @@ double vibrating_bar_com_velocity(double v0, double wave_speed, double length, d
 double evaluate_measure(std::string_view name, const Spec& spec, const History& history,
                         double momentum_scale, const FinalState* final_state) {
   if (name == "fitted_com_acceleration_x") return fitted_com_acceleration_x(history);
+  if (name == "fitted_com_displacement_acceleration_x")
+    return fitted_com_displacement_acceleration_x(history);
   if (name == "shock_plateau_stress")
     return final_state ? shock_plateau_stress(final_state->stress_xx) : kNaN;
   if (name == "max_relative_energy_error") return max_relative_energy_error(history);

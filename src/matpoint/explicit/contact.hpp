@@ -247,20 +247,13 @@ class MultiFieldContact {
     for (const auto& s : seen_by_[slot_of_node_[e.node]]) {
       if (s.field != e.a && s.field != e.b) continue;
       const double along = particles.x[s.particle].dot(e.normal);
-      const double extent = half_extent(particles, s.particle, e.normal);
+      const double extent = particles.half_extent(s.particle, e.normal);
       if (s.field == e.a)
         a_front = std::max(a_front, along + extent);
       else
         b_back = std::min(b_back, along - extent);
     }
     e.touching = b_back - a_front < spec_.separation.value_or(0.0) * cell_size_;
-  }
-
-  /// Half-extent of particle p's deformed domain along the unit vector n: sum over its edges
-  /// r_k = F e_k l_k / 2 of |r_k . n| (CPDI's |r1 . n| + |r2 . n|).
-  static double half_extent(const ParticleSet<D>& particles, std::size_t p, const Vec<D>& n) {
-    const Vec<D> projected = particles.F[p].transpose() * n;
-    return 0.5 * projected.cwiseAbs().dot(particles.size0[p]);
   }
 
   template <class Velocity>

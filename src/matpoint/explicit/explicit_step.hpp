@@ -8,6 +8,7 @@
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/deformation.hpp"
+#include "matpoint/explicit/face_contact.hpp"
 #include "matpoint/explicit/field_stencils.hpp"
 #include "matpoint/explicit/fmpm.hpp"
 #include "matpoint/explicit/gather.hpp"
@@ -43,8 +44,11 @@ class ExplicitStepper {
   /// Advances the simulation by dt; throws NumericalFailure naming step, time and particle.
   void step(double dt) {
     if (s_.step % sort_interval == 0) sort_by_cell(s_.grid, s_.particles);
-    stencils_.evaluate(s_.grid, s_.particles);
     step_dt_ = dt;
+    stencils_.evaluate(s_.grid, s_.particles);
+    if (const long p = first_corner_outside(stencils_); p >= 0) fail_corner_outside(p);
+    if (s_.conditions.has_one_sided())
+      mark_nodes_touching_faces(s_.grid, grid_, stencils_, s_.particles, s_.conditions);
     fmpm_now_ = fmpm_due(dt);
     const double t_new = s_.time + dt;
     switch (s_.solver.scheme) {  // the FMPM loops of eq. (3): USL 3.b; USF 1.c, 3.b; USL+ 3.b, 4.c; ...
@@ -252,8 +256,9 @@ class ExplicitStepper {
     if (result.first_outside >= 0) fail_outside(result.first_outside);
     if (result.first_too_fast >= 0) {
       std::ostringstream what;
-      what << "moved more than one cell in one step (velocity (" << s_.particles.v[result.first_too_fast].transpose()
-           << "), dt = " << dt << "): the particle Courant number exceeds 1; reduce solver.courant or solver.dt";
+      what << "moved more than one cell in one step (velocity ("
+           << s_.particles.v[result.first_too_fast].transpose() << "), dt = " << dt
+           << "): the particle Courant number exceeds 1; reduce solver.courant or solver.dt";
       fail(result.first_too_fast, what.str());
     }
   }
@@ -295,6 +300,28 @@ class ExplicitStepper {
     else
       what << "left the grid domain [" << s_.grid.origin.transpose() << "] to ["
            << s_.grid.domain_max().transpose() << "] (velocity (" << v.transpose() << "))";
+    fail(p, what.str());
+  }
+
+  /// CPDI stencils (also inside the multi-field adapter) report domains that outgrew the grid.
+  template <class S>
+  static long first_corner_outside(const S& stencils) {
+    if constexpr (requires { stencils.base; })
+      return first_corner_outside(stencils.base);
+    else if constexpr (requires { stencils.first_corner_outside; })
+      return stencils.first_corner_outside;
+    else
+      return -1;
+  }
+
+  [[noreturn]] void fail_corner_outside(long p) const {
+    const auto& F = s_.particles.F[p];
+    std::ostringstream what;
+    what << "has a domain corner more than one cell outside the grid [" << s_.grid.origin.transpose()
+         << "] to [" << s_.grid.domain_max().transpose() << "] (deformation gradient F = [";
+    for (int r = 0; r < D; ++r) what << (r > 0 ? "; " : "") << F.row(r);
+    what << "], det F = " << F.determinant()
+         << "): its CPDI domain outgrew the grid; enlarge the grid, or refine if F is not physical";
     fail(p, what.str());
   }
 

@@ -4,7 +4,8 @@ namespace matpoint {
 
 namespace {
 
-template <int D> bool node_selected(const VelocityConditionSpec& c, const Grid<D>& grid, Index node) {
+template <int D>
+bool node_selected(const VelocityConditionSpec& c, const Grid<D>& grid, Index node) {
   const auto ijk = grid.node_coords(node);
   if (c.on_face) {
     const int i = ijk[c.face_axis];
@@ -21,7 +22,8 @@ template <int D> bool node_selected(const VelocityConditionSpec& c, const Grid<D
 }  // namespace
 
 template <int D>
-VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpec>& specs, const Grid<D>& grid)
+VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpec>& specs,
+                                          const Grid<D>& grid)
     : grid_(grid) {
   for (const auto& c : specs) {
     std::vector<std::pair<int, int>> axis_function;  // (axis, function)
@@ -45,9 +47,14 @@ VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpe
     }
     const int approach = c.one_sided ? (c.face_side == 0 ? -1 : 1) : 0;
     one_sided_ = one_sided_ || c.one_sided;
+    if (c.one_sided) {
+      const int a = c.face_axis;
+      faces_.push_back({a, c.face_side, c.face_side == 0 ? grid.origin[a] : grid.domain_max()[a]});
+    }
     for (Index node = 0; node < grid.node_count; ++node)
       if (node_selected(c, grid, node))
-        for (auto [axis, function] : axis_function) entries_.push_back({node, axis, function, c.face_axis, approach});
+        for (auto [axis, function] : axis_function)
+          entries_.push_back({node, axis, function, c.face_axis, approach});
   }
 }
 
@@ -84,7 +91,8 @@ void VelocityConditions<D>::select_field_wall_nodes(double t, const std::vector<
       const bool controlled = w.material_below ? x >= x_wall - w.depth - tol : x <= x_wall + w.depth + tol;
       if (!controlled) continue;
       // v_i = v_wall + grad v (x_i - x_wall), grad v = v_wall / (x_wall - x_c) for a stretch about x_c
-      const double value = w.stretch_about ? v_wall * (x - *w.stretch_about) / (x_wall - *w.stretch_about) : v_wall;
+      const double value =
+          w.stretch_about ? v_wall * (x - *w.stretch_about) / (x_wall - *w.stretch_about) : v_wall;
       wall_entries_.push_back({offset + node, a, value});
     }
   }
@@ -95,12 +103,13 @@ void VelocityConditions<D>::apply(std::vector<Vec<D>>& v, double t, const std::v
                                   Vec<D>* impulse, double* work) const {
   std::vector<double> value(functions_.size());
   for (std::size_t f = 0; f < functions_.size(); ++f) value[f] = functions_[f](t);
-  std::vector<char> held;  // one-sided faces: decided on the velocities before any is changed
-  if (one_sided_)
-    for (const auto& e : entries_) held.push_back(static_cast<char>(holds(e, v)));
+  if (one_sided_ && (held_.empty() || touching_.empty())) {  // decided on the velocities before any change
+    held_.clear();
+    for (const auto& e : entries_) held_.push_back(static_cast<char>(holds(e, v)));
+  }
   for (std::size_t k = 0; k < entries_.size(); ++k) {
     const auto& e = entries_[k];
-    if (one_sided_ && !held[k]) continue;
+    if (one_sided_ && !held_[k]) continue;
     const double set = e.function < 0 ? 0.0 : value[e.function];
     if (mass && impulse && work) {
       const double dp = (*mass)[e.node] * (set - v[e.node][e.axis]);

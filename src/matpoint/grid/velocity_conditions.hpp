@@ -3,15 +3,16 @@
 // faces include the ghost node layers beyond the face.
 #pragma once
 
+#include <vector>
+
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/io/spec.hpp"
 
-#include <vector>
-
 namespace matpoint {
 
-template <int D> class VelocityConditions {
+template <int D>
+class VelocityConditions {
  public:
   VelocityConditions() = default;
   VelocityConditions(const std::vector<VelocityConditionSpec>& specs, const Grid<D>& grid);
@@ -21,9 +22,9 @@ template <int D> class VelocityConditions {
   /// after the nodal masses are known.
   void select_wall_nodes(double t, const std::vector<double>& mass, double mass_floor);
 
-  /// Sets every constrained component of v at time t (one-sided faces: on the nodes moving into them). Where mass is given, adds to `impulse` the
-  /// momentum the constraint injects (m (v_set - v_free)) and to `work` that impulse times the
-  /// prescribed velocity: the work done by a moving wall (zero for fixed ones).
+  /// Sets every constrained component of v at time t (one-sided faces: on the nodes moving into them). Where
+  /// mass is given, adds to `impulse` the momentum the constraint injects (m (v_set - v_free)) and to `work`
+  /// that impulse times the prescribed velocity: the work done by a moving wall (zero for fixed ones).
   void apply(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass = nullptr,
              Vec<D>* impulse = nullptr, double* work = nullptr) const;
 
@@ -43,12 +44,31 @@ template <int D> class VelocityConditions {
       }
       v[node][axis] = 0.0;
     };
-    for (const auto& e : entries_) zero(e.node, e.axis, e.function < 0 || !work ? 0.0 : functions_[e.function](t));
+    for (const auto& e : entries_)
+      zero(e.node, e.axis, e.function < 0 || !work ? 0.0 : functions_[e.function](t));
     for (const auto& e : wall_entries_) zero(e.node, e.axis, e.value);
   }
 
   [[nodiscard]] bool has_walls() const { return !walls_.empty(); }
   [[nodiscard]] bool has_one_sided() const { return one_sided_; }
+
+  /// A one-sided face: its axis, side (0: the low face, 1: the high one) and position.
+  struct Face {
+    int axis;
+    int side;
+    double position;
+  };
+  [[nodiscard]] const std::vector<Face>& one_sided_faces() const { return faces_; }
+  /// One-sided faces are rigid-wall contacts: a node is held only while the body touches the face
+  /// there (flags per node over every field, set each step by mark_nodes_touching_faces) and the
+  /// node moves into the face. Without flags (never set) every node of the face counts as
+  /// touching. The first apply() after touching() decides which nodes are held, from the velocities
+  /// it is given; the later applies of the step (USF, MUSL) hold the same nodes, so that the
+  /// velocities that move the particles and those that strain them see the same contact.
+  [[nodiscard]] std::vector<char>& touching() {
+    held_.clear();
+    return touching_;
+  }
 
   /// Multi-field (contact) runs: every condition holds on each of `fields` copies of the grid's
   /// N nodes (field f at flat indices f N .. f N + N - 1), walls included.
@@ -60,13 +80,16 @@ template <int D> class VelocityConditions {
   struct Entry {
     Index node;
     int axis;
-    int function;      // index into functions_, or -1 for zero
+    int function;       // index into functions_, or -1 for zero
     int face_axis = 0;  // one-sided: the face's axis, and
     int approach = 0;   // +1 / -1: holds only while v[face_axis] * approach > 0; 0: always
   };
-  /// A one-sided entry holds when its node moves into the face (judged on v before any change).
-  [[nodiscard]] static bool holds(const Entry& e, const std::vector<Vec<D>>& v) {
-    return e.approach == 0 || v[e.node][e.face_axis] * e.approach > 0.0;
+  /// A one-sided entry holds when the body touches the face at its node and the node moves into
+  /// the face (judged on v before any change).
+  [[nodiscard]] bool holds(const Entry& e, const std::vector<Vec<D>>& v) const {
+    if (e.approach == 0) return true;
+    const bool touches = touching_.empty() || touching_[e.node] != 0;
+    return touches && v[e.node][e.face_axis] * e.approach > 0.0;
   }
   struct WallEntry {
     Index node;
@@ -80,6 +103,9 @@ template <int D> class VelocityConditions {
   std::vector<VelocityConditionSpec> walls_;
   std::vector<WallEntry> wall_entries_;  // this step's wall nodes
   bool one_sided_ = false;
+  std::vector<Face> faces_;         // the one-sided faces
+  std::vector<char> touching_;      // per node (every field): a body touches a one-sided face there
+  mutable std::vector<char> held_;  // per entry: this step's one-sided decision (apply() caches it)
   Grid<D> grid_;
   int fields_ = 1;
 };

@@ -1,18 +1,19 @@
 // Particles as a structure of arrays, kept sorted by cell (DESIGN.md: arrays, not objects).
 #pragma once
 
-#include "matpoint/core/types.hpp"
-
 #include <array>
 #include <vector>
 
+#include "matpoint/core/types.hpp"
+
 namespace matpoint {
 
-template <int D> struct ParticleSet {
+template <int D>
+struct ParticleSet {
   static constexpr int kCorners = 1 << D;  // corners of a particle domain (segment, quad, hexahedron)
   using Corners = std::array<Vec<D>, kCorners>;
-  std::vector<Vec<D>> x;        // position
-  std::vector<Vec<D>> v;        // velocity
+  std::vector<Vec<D>> x;  // position
+  std::vector<Vec<D>> v;  // velocity
   std::vector<double> mass;
   std::vector<double> volume0;  // initial volume
   std::vector<Vec<D>> size0;    // initial domain edge lengths (for domain-based bases)
@@ -33,6 +34,11 @@ template <int D> struct ParticleSet {
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
   [[nodiscard]] double volume(std::size_t p) const { return volume0[p] * F[p].determinant(); }
+  /// Half-extent of particle p's deformed domain along the unit vector n: the sum over its edges
+  /// r_k = F e_k l_k / 2 of |r_k . n| (CPDI's |r1 . n| + |r2 . n|; Nairn 2026 extraction §2.5).
+  [[nodiscard]] double half_extent(std::size_t p, const Vec<D>& n) const {
+    return 0.5 * (F[p].transpose() * n).cwiseAbs().dot(size0[p]);
+  }
 
   void add(const Vec<D>& position, const Vec<D>& velocity, double m, double vol, const Vec<D>& size,
            int material_id, int body_id) {

@@ -137,6 +137,10 @@ struct CpdiStencils {
   std::vector<std::array<int, D>> size;  // box size in nodes per direction
   std::vector<double> weight;
   std::vector<Vec<D>> gradient;
+  /// After evaluate(): the lowest storage index of a particle with a domain corner more than one
+  /// cell outside the grid (or not finite), -1 if none. The folded basis still gives finite weights
+  /// there, but the domain has outgrown the grid: the stepper stops with a numerical failure.
+  long first_corner_outside = -1;
 
   [[nodiscard]] static Corners corners(const ParticleSet<D>& ps, std::size_t p) {
     if constexpr (Domain == CpdiDomain::Tracked)
@@ -153,7 +157,9 @@ struct CpdiStencils {
     size.resize(n);
     // Pass 1: each particle's node box, from the extent of its corners (a corner window's lowest
     // node is monotone in the corner coordinate).
-#pragma omp parallel for schedule(static) if (n > kParallelMinimum)
+    const Vec<D> low = grid.origin - grid.h, high = grid.domain_max() + grid.h;
+    long outside = std::numeric_limits<long>::max();
+#pragma omp parallel for schedule(static) reduction(min : outside) if (n > kParallelMinimum)
     for (std::ptrdiff_t p = 0; p < n; ++p) {
       const Corners X = corners(particles, p);
       std::array<int, D> lo;
@@ -164,6 +170,7 @@ struct CpdiStencils {
           lo_x = std::min(lo_x, X[c][a]);
           hi_x = std::max(hi_x, X[c][a]);
         }
+        if (!(lo_x >= low[a] && hi_x <= high[a])) outside = std::min(outside, static_cast<long>(p));
         // The same arithmetic as fill() so that both passes find the same windows.
         lo[a] = point_window_start<Kernel>((lo_x - grid.origin[a]) / grid.h[a], grid.cells[a]);
         size[p][a] =
@@ -173,6 +180,7 @@ struct CpdiStencils {
       lowest[p] = grid.node_index(lo);
       offset[p + 1] = count;
     }
+    first_corner_outside = outside == std::numeric_limits<long>::max() ? -1 : outside;
     for (std::ptrdiff_t p = 0; p < n; ++p) offset[p + 1] += offset[p];
     weight.resize(offset[n]);  // fill() writes every entry of its particle
     gradient.resize(offset[n]);
