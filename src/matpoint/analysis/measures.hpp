@@ -16,7 +16,8 @@ inline constexpr std::array<MeasureInfo, 17> kMeasures{{
      "max over output times of |E(t) + D(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy, "
      "D = friction work (contact)"},
     {"max_relative_momentum_error",
-     "max over output times of |P(t) - P(0) - I_ext(t)| / sum_p m_p |V_p(0)| (I_ext: impulse of gravity)"},
+     "max over output times of |P(t) - P(0) - I_ext(t)| / sum_p m_p |V_p(0)|, I_ext the impulse of gravity "
+     "and of the grid velocity conditions (contact with a rigid body is not counted in it)"},
     {"min_jacobian", "smallest det F of any particle at any output time"},
     {"mean_rms_velocity_change",
      "mean over the output times after t = 0 of sqrt(mean_p |V_p(t) - V_p(0)|^2): the velocity error of a "

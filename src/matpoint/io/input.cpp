@@ -1255,7 +1255,9 @@ class SpecReader {
       o.optional("every_time").fail("0 when every_steps is nonzero (one of every_steps or every_time)");
     set_if(out.particles, o.optional("particles").boolean());
     set_if(out.plots, o.optional("plots").boolean());
-    const std::string fields_text = "one of the particle fields " + join(kParticleFields, true);
+    std::vector<std::string_view> field_names;
+    for (const auto& f : kParticleFields) field_names.push_back(f.name);
+    const std::string fields_text = "one of the particle fields " + join(field_names, true);
     for (const auto& item : o.optional("fields").elements("an array of particle field names")) {
       const auto name = item.string();
       if (!name) continue;

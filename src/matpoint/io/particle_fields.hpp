@@ -1,4 +1,5 @@
 // Names of the particle fields that output.fields may list (written to particles_NNNNNN.vtu).
+// docs/input.md's table of them is generated from this one (scripts/check_input_reference.py).
 #pragma once
 
 #include <array>
@@ -6,13 +7,28 @@
 
 namespace matpoint {
 
-inline constexpr std::array<std::string_view, 11> kParticleFields{
-    "velocity", "stress", "deformation_gradient", "strain", "jacobian", "mass",
-    "volume",   "material", "body",               "id",     "state"};
+struct ParticleFieldInfo {
+  std::string_view name;
+  std::string_view content;
+};
+
+inline constexpr std::array<ParticleFieldInfo, 11> kParticleFields{{
+    {"velocity", "particle velocity"},
+    {"stress", "Cauchy stress"},
+    {"deformation_gradient", "deformation gradient F"},
+    {"strain", "Green-Lagrange strain E = (F^T F - I) / 2"},
+    {"jacobian", "det F"},
+    {"mass", "particle mass"},
+    {"volume", "current particle volume"},
+    {"material", "material index (position in materials)"},
+    {"body", "body index (position in bodies)"},
+    {"id", "particle number"},
+    {"state", "material history variables, where the model has any"},
+}};
 
 [[nodiscard]] constexpr bool is_particle_field(std::string_view name) {
-  for (auto f : kParticleFields)
-    if (f == name) return true;
+  for (const auto& f : kParticleFields)
+    if (f.name == name) return true;
   return false;
 }
 
