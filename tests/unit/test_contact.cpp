@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <string>
 
+#include "matpoint/analysis/grid_modes.hpp"
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/io/input.hpp"
@@ -227,3 +228,37 @@ TEST(ContactInput, RigidMaterialNeedsContactAndNoElasticConstants) {
 }
 
 }  // namespace
+
+// Grid diagnostics with one velocity field per body (history.csv's checkerboard_velocity,
+// grid_rms_velocity, hourglass_energy): every field counts. A checkerboard on field 0 and the same
+// state copied into field 1 give the same mass-weighted ratios and twice the hourglass energy; a
+// second field at rest halves the checkerboard velocity (it doubles the mass, not the mode).
+TEST(ContactDiagnostics, GridModesCountEveryField) {
+  const Grid<2> grid(Vec<2>(0, 0), Vec<2>(1, 1), {4, 4}, 0);
+  const auto n = static_cast<std::size_t>(grid.node_count);
+  std::vector<double> mass(n, 2.0);
+  std::vector<Vec<2>> velocity(n);
+  for (Index i = 0; i < grid.node_count; ++i) {
+    const auto ijk = grid.node_coords(i);
+    velocity[i] = Vec<2>((ijk[0] + ijk[1]) % 2 == 0 ? 1.0 : -1.0, 0.0);
+  }
+  const GridModes one = measure_grid_modes(grid, mass, velocity);
+  EXPECT_NEAR(one.checkerboard_velocity, 1.0, 1e-14);
+  EXPECT_NEAR(one.rms_velocity, 1.0, 1e-14);
+  EXPECT_NEAR(one.hourglass_energy, 0.5 * 2.0 * 16, 1e-12);  // 16 cells, m_c = 2, |g_c| = 1
+
+  std::vector<double> mass2(mass);
+  mass2.insert(mass2.end(), mass.begin(), mass.end());
+  std::vector<Vec<2>> copied(velocity);
+  copied.insert(copied.end(), velocity.begin(), velocity.end());
+  const GridModes two = measure_grid_modes(grid, mass2, copied);
+  EXPECT_NEAR(two.checkerboard_velocity, 1.0, 1e-14);
+  EXPECT_NEAR(two.rms_velocity, 1.0, 1e-14);
+  EXPECT_NEAR(two.hourglass_energy, 2 * one.hourglass_energy, 1e-12);
+
+  std::vector<Vec<2>> resting(velocity);
+  resting.insert(resting.end(), n, Vec<2>::Zero());
+  const GridModes half = measure_grid_modes(grid, mass2, resting);
+  EXPECT_NEAR(half.checkerboard_velocity, 0.5, 1e-14);
+  EXPECT_NEAR(half.hourglass_energy, one.hourglass_energy, 1e-12);
+}

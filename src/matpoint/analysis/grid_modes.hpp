@@ -4,6 +4,8 @@
 //   grid rms velocity      sqrt(sum_i m_i |v_i|^2 / sum_i m_i)
 //   hourglass energy       1/2 sum_c m_c |g_c|^2,  g_c = 2^-D sum_{corners k} s_k v_k,  m_c = 2^-D sum_k m_k
 // (g_c is the coefficient of the bilinear xi*eta term of cell c: zero strain at the cell centre).
+// With multimaterial contact the arrays hold one block of N nodes per field; the sums run over all
+// of them (each field's checkerboard and hourglass modes count).
 #pragma once
 
 #include <cmath>
@@ -28,31 +30,34 @@ GridModes measure_grid_modes(const Grid<D>& grid, const std::vector<double>& mas
     for (int a = 0; a < D; ++a) sum += ijk[a];
     return (sum % 2 + 2) % 2 == 0 ? 1.0 : -1.0;
   };
-  for (Index i = 0; i < grid.node_count; ++i) {
+  const Index n = grid.node_count;
+  const Index fields = static_cast<Index>(mass.size()) / n;
+  for (Index i = 0; i < fields * n; ++i) {
     total += mass[i];
     energy += mass[i] * velocity[i].squaredNorm();
-    checker += sign(grid.node_coords(i)) * mass[i] * velocity[i];
+    checker += sign(grid.node_coords(i % n)) * mass[i] * velocity[i];
   }
   if (!(total > 0.0)) return g;
   g.checkerboard_velocity = checker.norm() / total;
   g.rms_velocity = std::sqrt(energy / total);
-  for (Index i = 0; i < grid.node_count; ++i) {  // cells by their lowest node
-    const auto ijk = grid.node_coords(i);
-    bool interior = true;
-    for (int a = 0; a < D; ++a) interior = interior && ijk[a] + 1 < grid.nodes[a] - grid.ghost;
-    if (!interior) continue;
-    double m = 0.0;
-    Vec<D> hg = Vec<D>::Zero();
-    for (int e = 0; e < (1 << D); ++e) {
-      std::array<int, D> corner = ijk;
-      for (int a = 0; a < D; ++a) corner[a] += (e >> a) & 1;
-      const Index k = grid.node_index(corner);
-      m += mass[k];
-      hg += sign(corner) * velocity[k];
+  for (Index f = 0; f < fields; ++f)
+    for (Index i = 0; i < n; ++i) {  // cells by their lowest node
+      const auto ijk = grid.node_coords(i);
+      bool interior = true;
+      for (int a = 0; a < D; ++a) interior = interior && ijk[a] + 1 < grid.nodes[a] - grid.ghost;
+      if (!interior) continue;
+      double m = 0.0;
+      Vec<D> hg = Vec<D>::Zero();
+      for (int e = 0; e < (1 << D); ++e) {
+        std::array<int, D> corner = ijk;
+        for (int a = 0; a < D; ++a) corner[a] += (e >> a) & 1;
+        const Index k = f * n + grid.node_index(corner);
+        m += mass[k];
+        hg += sign(corner) * velocity[k];
+      }
+      const double scale = 1.0 / (1 << D);
+      g.hourglass_energy += 0.5 * (m * scale) * (hg * scale).squaredNorm();
     }
-    const double scale = 1.0 / (1 << D);
-    g.hourglass_energy += 0.5 * (m * scale) * (hg * scale).squaredNorm();
-  }
   return g;
 }
 
