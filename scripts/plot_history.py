@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Draw the plots of a matpoint output folder: plot_history.py DIR
 
-Writes DIR/plots/energy.png (energies and the relative energy-balance drift), DIR/plots/momentum.png
-and, for 2-D runs, DIR/plots/final_state.png (the last particles_NNNNNN.vtu coloured by speed).
+Writes DIR/plots/energy.png (energies and the relative energy-balance drift), DIR/plots/momentum.png,
+DIR/plots/probes.png when the input has output.probes (displacement, velocity and stress of each
+probed particle) and, for 2-D runs, DIR/plots/final_state.png (the last particles_NNNNNN.vtu
+coloured by speed).
 Each image is saved under a temporary name and renamed, so a plot is either whole or absent.
 Run by `matpoint run` at the end of a run and by `matpoint plot DIR`; needs python3-matplotlib
 (and python3-meshio for final_state.png, skipped without it). MATPOINT_PLOT_DPI sets the
@@ -81,6 +83,32 @@ def plot_momentum(h, title, plots):
     save(fig, plots, "momentum.png")
 
 
+def probe_names(h):
+    """Probe names in column order, from the probe_NAME_J columns of history.csv."""
+    return [column[len("probe_"):-len("_J")] for column in h if column.startswith("probe_") and column.endswith("_J")]
+
+
+def plot_probes(h, title, plots):
+    names = probe_names(h)
+    if not names:
+        return
+    rows = [("displacement", ["ux", "uy", "uz"]), ("velocity", ["vx", "vy", "vz"]),
+            ("Cauchy stress", ["sxx", "syy", "szz", "sxy", "sxz", "syz"])]
+    fig, axes = plt.subplots(len(rows), 1, figsize=(8, 9), sharex=True)
+    for ax, (label, components) in zip(axes, rows):
+        for name in names:
+            for component in components:
+                if f"probe_{name}_{component}" in h:
+                    ax.plot(h["time"], h[f"probe_{name}_{component}"], label=f"{name}: {component}")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        ax.legend(loc="best", fontsize="small")
+    axes[0].set_title(title or "probes")
+    axes[-1].set_xlabel("time")
+    fig.tight_layout()
+    save(fig, plots, "probes.png")
+
+
 def last_vtu(directory):
     pvd = os.path.join(directory, "results.pvd")
     if not os.path.exists(pvd):
@@ -138,6 +166,7 @@ def main(argv):
     os.makedirs(plots, exist_ok=True)
     plot_energy(h, title, plots)
     plot_momentum(h, title, plots)
+    plot_probes(h, title, plots)
     if "momentum_y" in h and "momentum_z" not in h:
         plot_final_state(directory, title, plots)
     return 0

@@ -1,6 +1,7 @@
 # Shared by the restart tests (sourced; not a test itself: the test glob is *.sh). Needs common.bash.
 # restart_input FILE: a 2-D two-disk collision of ~1600 particles and 3000 steps (about a second on
-# one thread), outputs every 100 steps and a checkpoint every 100 steps.
+# one thread), outputs every 100 steps and a checkpoint every 100 steps, and a probe (its history
+# columns go through the checkpoint too).
 restart_input() {
   cat >"$1" <<'JSON'
 { "grid": {"dim": 2, "min": [0, 0], "max": [1, 1], "cell_size": 0.025},
@@ -10,7 +11,8 @@ restart_input() {
              {"material": "m", "shape": {"type": "disk", "center": [0.75, 0.75], "radius": 0.2},
               "velocity": [-0.1, -0.1]}],
   "solver": {"scheme": "musl", "shape": "bspline2", "dt": 0.001, "end_time": 3.0},
-  "output": {"every_steps": 100, "plots": false, "checkpoint": {"every_steps": 100}} }
+  "output": {"every_steps": 100, "plots": false, "checkpoint": {"every_steps": 100},
+             "probes": [{"name": "centre", "position": [0.25, 0.25]}]} }
 JSON
 }
 

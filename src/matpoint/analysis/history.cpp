@@ -1,6 +1,7 @@
 #include "matpoint/analysis/history.hpp"
 
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace matpoint {
@@ -19,6 +20,7 @@ std::string History::csv() const {
   }
   for (int a = 0; a < dim; ++a) out << ",grid_momentum_difference_" << axis[a];
   out << ",checkerboard_velocity,grid_rms_velocity,hourglass_energy";
+  for (const auto& column : probe_columns) out << ',' << column;
   out << '\n' << std::setprecision(12);
   for (const auto& s : samples) {
     const double total = s.kinetic_energy + s.strain_energy;
@@ -34,6 +36,8 @@ std::string History::csv() const {
     }
     for (int a = 0; a < dim; ++a) out << ',' << s.grid_momentum_difference[a];
     out << ',' << s.checkerboard_velocity << ',' << s.grid_rms_velocity << ',' << s.hourglass_energy;
+    for (std::size_t c = 0; c < probe_columns.size(); ++c)  // nan: a row from before the probe existed
+      out << ',' << (c < s.probes.size() ? s.probes[c] : std::numeric_limits<double>::quiet_NaN());
     out << '\n';
   }
   return out.str();

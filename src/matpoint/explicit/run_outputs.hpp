@@ -14,6 +14,7 @@
 #include "matpoint/analysis/diagnostics.hpp"
 #include "matpoint/analysis/grid_modes.hpp"
 #include "matpoint/analysis/history.hpp"
+#include "matpoint/analysis/probes.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/atomic_file.hpp"
 #include "matpoint/io/checkpoint.hpp"
@@ -64,9 +65,9 @@ inline std::string output_name(long index, const char* prefix) {
 
 }  // namespace run_outputs_detail
 
-/// One history.csv row of the simulation's present state.
+/// One history.csv row of the simulation's present state; `probe_ids`: the particles of output.probes.
 template <int D>
-HistorySample history_sample(const Simulation<D>& sim, int body_count) {
+HistorySample history_sample(const Simulation<D>& sim, int body_count, const std::vector<long>& probe_ids) {
   using run_outputs_detail::pad;
   const auto d = measure_diagnostics(sim, body_count);
   HistorySample s;
@@ -93,6 +94,7 @@ HistorySample history_sample(const Simulation<D>& sim, int body_count) {
     s.body_com_velocity.push_back(pad<D>(Vec<D>(d.body_momentum[b] / std::max(d.body_mass[b], 1e-300))));
     s.body_com_position.push_back(pad<D>(d.body_com_position[b]));
   }
+  append_probe_values(sim.particles, sim.initial_position, probe_ids, s.probes);
   return s;
 }
 
@@ -103,12 +105,15 @@ HistorySample history_sample(const Simulation<D>& sim, int body_count) {
 template <int D>
 class RunOutputs {
  public:
-  /// `run` carries the counters and the .pvd entries of a restart (zero at a fresh start).
-  RunOutputs(const Spec& spec, std::filesystem::path out_dir, History history, const RunCounters& run)
+  /// `run` carries the counters and the .pvd entries of a restart (zero at a fresh start);
+  /// `probe_ids` the particles that output.probes follow.
+  RunOutputs(const Spec& spec, std::filesystem::path out_dir, History history, const RunCounters& run,
+             std::vector<long> probe_ids)
       : spec_(spec),
         out_dir_(std::move(out_dir)),
         history_(std::move(history)),
         body_count_(static_cast<int>(spec.bodies.size())),
+        probe_ids_(std::move(probe_ids)),
         pvd_(out_dir_ / "results.pvd"),
         domains_pvd_(out_dir_ / "domains.pvd"),  // GIMP / CPDI particle domains
         write_domains_(spec.output.particles && has_particle_domains(spec.solver.shape)),
@@ -119,7 +124,7 @@ class RunOutputs {
 
   /// Appends the present state to the history and, with `output.particles`, writes its .vtu.
   void record(const Simulation<D>& sim) {
-    history_.samples.push_back(history_sample(sim, body_count_));
+    history_.samples.push_back(history_sample(sim, body_count_, probe_ids_));
     if (spec_.output.particles ||
         std::chrono::steady_clock::now() - last_history_write_ > std::chrono::seconds(1))
       write_history();
@@ -154,6 +159,7 @@ class RunOutputs {
   std::filesystem::path out_dir_;
   History history_;
   int body_count_;
+  std::vector<long> probe_ids_;
   PvdCollection pvd_, domains_pvd_;
   bool write_domains_;
   long outputs_;

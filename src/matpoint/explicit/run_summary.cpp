@@ -78,6 +78,13 @@ nlohmann::json run_summary(const Spec& spec, const RunOptions& options, const Ru
   s["restarted_at_step"] = or_null(f.restart_step >= 0, f.restart_step);
   s["checkpoint"] = or_null(!f.checkpoint_file.empty(), f.checkpoint_file.string());
   s["checkpoint_step"] = or_null(f.checkpoint_step >= 0, f.checkpoint_step);
+  if (!spec.output.probes.empty()) {
+    s["probes"] = nlohmann::json::array();
+    for (std::size_t k = 0; k < f.probes.size() && k < spec.output.probes.size(); ++k)
+      s["probes"].push_back(nlohmann::json{{"name", spec.output.probes[k].name},
+                                           {"particle", f.probes[k].particle},
+                                           {"reference_position", f.probes[k].reference_position}});
+  }
   s["warnings"] = nlohmann::json::array();  // e.g. a Courant number above the measured stability limit
   if (const auto warning = courant_warning(spec.solver); !warning.empty()) s["warnings"].push_back(warning);
   s["dimension"] = f.dimension;

@@ -39,6 +39,11 @@ struct RunFacts {
   std::optional<std::size_t> logistic_fallbacks;  // logistic-regression contact normals
   double momentum_scale = 0.0;                    // sum m |v| at time 0 (the momentum checks' scale)
   std::vector<double> final_stress_xx;            // every particle's sigma_xx (final-state measures)
+  struct Probe {
+    long particle = -1;                      // the followed particle's id
+    std::vector<double> reference_position;  // its X
+  };
+  std::vector<Probe> probes;  // output.probes, in input order
 };
 
 /// The summary; `checks_pass` is true when every check of the input passed.

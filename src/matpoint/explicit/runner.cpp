@@ -46,6 +46,16 @@ const char* signal_name(int signal) {
   }
 }
 
+/// Every history.csv column of the input's probes (analysis/probes.hpp).
+std::vector<std::string> probe_columns(const Spec& spec) {
+  std::vector<std::string> out;
+  for (const auto& probe : spec.output.probes) {
+    const auto names = probe_column_names(probe.name, spec.grid.dim);
+    out.insert(out.end(), names.begin(), names.end());
+  }
+  return out;
+}
+
 /// Starts a run: from the input (dt and the momentum scale from the initial state) or from a
 /// checkpoint (everything as the interrupted run had it). Throws InputError before writing.
 template <int D>
@@ -115,6 +125,11 @@ void add_state_facts(const Spec& spec, const Simulation<D>& sim, const Stepper& 
   if (sim.has_contact && spec.contact.normals == ContactNormals::Logistic)
     facts.logistic_fallbacks = sim.contact.logistic_fallbacks();
   for (const auto& stress : sim.particles.stress) facts.final_stress_xx.push_back(stress(0, 0));
+  const auto probe_ids = probe_particle_ids<D>(sim.initial_position, spec.output.probes);
+  for (long id : probe_ids) {
+    const Vec<D>& X = sim.initial_position[id];
+    facts.probes.push_back({id, std::vector<double>(X.data(), X.data() + D)});
+  }
 }
 
 /// The time loop of one basis and dimension: steps, outputs, checkpoints, guards and signals;
@@ -122,12 +137,13 @@ void add_state_facts(const Spec& spec, const Simulation<D>& sim, const Stepper& 
 template <int D, class Stencils>
 RunResult run_with(const Spec& spec, const RunOptions& options) {
   Simulation<D> sim = build_simulation<D>(spec);  // may throw InputError: nothing written yet
-  History restored{D, static_cast<int>(spec.bodies.size()), {}};
+  History restored{D, static_cast<int>(spec.bodies.size()), probe_columns(spec), {}};
   RunCounters run = start_state<D>(spec, options, sim, restored);  // may throw InputError too
   const bool restarting = !options.restart.empty();
   const double dt = run.dt;
   std::filesystem::create_directories(options.out_dir);
-  RunOutputs<D> outputs(spec, options.out_dir, std::move(restored), run);
+  const auto probe_ids = probe_particle_ids<D>(sim.initial_position, spec.output.probes);
+  RunOutputs<D> outputs(spec, options.out_dir, std::move(restored), run, probe_ids);
 
   ExplicitStepper<D, Stencils> stepper(sim);
   if (restarting)

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "matpoint/core/errors.hpp"
@@ -113,6 +114,43 @@ std::vector<HistorySample> history_samples(const std::vector<double>& rows, std:
     }
   }
   return out;
+}
+
+// --- probe columns (output.probes): their names, '\n'-joined, and one row per sample ---
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& name : names) out += name + '\n';
+  return out;
+}
+
+void write_probe_rows(Hdf5Writer& w, const History& history) {
+  const std::size_t width = history.probe_columns.size();
+  if (width == 0 || history.samples.empty()) return;
+  std::vector<double> rows;
+  for (const auto& s : history.samples) {
+    std::vector<double> row = s.probes;
+    row.resize(width, std::numeric_limits<double>::quiet_NaN());  // rows from before the probes
+    rows.insert(rows.end(), row.begin(), row.end());
+  }
+  w.write("history/probe_columns", joined(history.probe_columns));
+  w.write("history/probes", rows, {h(history.samples.size()), h(width)});
+}
+
+/// The probe values of the samples when the checkpoint has the same probes as the input; a
+/// restart that adds or changes probes (output may change) leaves the earlier rows without them.
+void read_probe_rows(const Hdf5Reader& r, History& history) {
+  const std::size_t width = history.probe_columns.size();
+  if (width == 0 || !r.has("history/probe_columns") ||
+      r.text("history/probe_columns") != joined(history.probe_columns))
+    return;
+  const auto shape = r.shape("history/probes");
+  if (shape.size() != 2 || shape[0] != history.samples.size() || shape[1] != width)
+    throw Hdf5Error("dataset history/probes has the wrong shape");
+  const auto rows = r.doubles("history/probes", shape);
+  for (std::size_t k = 0; k < history.samples.size(); ++k)
+    history.samples[k].probes.assign(rows.begin() + static_cast<std::ptrdiff_t>(k * width),
+                                     rows.begin() + static_cast<std::ptrdiff_t>((k + 1) * width));
 }
 
 // --- .pvd entries: times and '\n'-joined names ---
@@ -238,6 +276,7 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   const std::size_t width = kSampleColumns + kBodyColumns * static_cast<std::size_t>(history.body_count);
   w.write("history/body_count", std::int64_t{history.body_count});
   w.write("history/samples", history_rows(history), {h(history.samples.size()), h(width)});
+  write_probe_rows(w, history);
 }
 
 template <int D>
@@ -303,6 +342,7 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   const std::size_t width = kSampleColumns + kBodyColumns * static_cast<std::size_t>(bodies);
   if (rows.size() != 2 || rows[1] != width) throw Hdf5Error("dataset history/samples has the wrong width");
   history.samples = history_samples(r.doubles("history/samples", rows), rows[0], history.body_count);
+  read_probe_rows(r, history);
 }
 
 InputError damaged(const std::filesystem::path& file, const std::string& what) {

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <fstream>
@@ -535,8 +536,8 @@ class SpecReader {
                         "mapping", "mls", "deformation_update", "dt", "courant", "end_time", "max_steps",
                         "mass_tolerance", "artificial_viscosity"}));
     check_one_sided_transfer(top.optional("boundary_conditions"));
-    read_output(Object(top.optional("output"),
-                       {"every_steps", "every_time", "particles", "plots", "fields", "checkpoint"}));
+    read_output(Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields",
+                                                "checkpoint", "probes"}));
     read_checks(top.optional("checks"));
     read_contact(top.optional("contact"));
     if (grid_ok_) check_stencil_fits();
@@ -1267,6 +1268,44 @@ class SpecReader {
         item.fail(fields_text);
     }
     read_checkpoint_keys(Object(o.optional("checkpoint"), {"every_steps", "every_minutes"}));
+    read_probes(o.optional("probes"));
+  }
+
+  /// output.probes: [{"name": "tip", "position": [x, y]}, ...] (docs/input.md#output).
+  void read_probes(const Value& list) {
+    std::set<std::string> names;
+    for (const auto& item : list.elements("an array of probe objects {\"name\", \"position\"}")) {
+      const Object p(item, {"name", "position"});
+      if (!p.valid()) continue;
+      ProbeSpec probe;
+      const Value name = p.required("name");
+      if (const auto text = name.string()) {
+        const bool plain = std::all_of(text->begin(), text->end(), [](char c) {
+          return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-';
+        });
+        if (!plain)
+          name.fail("a name of letters, digits, '_' and '-' (it names history.csv columns)");
+        else if (!names.insert(*text).second)
+          name.fail("a name different from every other probe's");
+        probe.name = *text;
+      }
+      const Value position = p.required("position");
+      if (const auto x = position.vector(dim_)) {
+        probe.position = *x;
+        if (grid_ok_) check_point_inside_grid(position, *x);
+      }
+      spec_.output.probes.push_back(probe);
+    }
+  }
+
+  void check_point_inside_grid(const Value& v, const Triple& x) const {
+    const GridSpec& g = spec_.grid;
+    for (int a = 0; a < dim_; ++a)
+      if (x[a] < g.min[a] || x[a] > g.max[a]) {
+        v.fail("a point inside the grid [min, max] (grid.min = " + vector_text(g.min) +
+               ", grid.max = " + vector_text(g.max) + ")");
+        return;
+      }
   }
 
   /// output.checkpoint: every N steps and/or every T wall-clock minutes (docs/input.md#output).

@@ -166,6 +166,13 @@ struct CheckpointSpec {
   [[nodiscard]] bool enabled() const { return every_steps > 0 || every_minutes > 0; }
 };
 
+/// A probe: the particle whose reference position is nearest `position` (ties: the lowest id),
+/// recorded at every output in history.csv (analysis/probes.hpp).
+struct ProbeSpec {
+  std::string name;  // letters, digits, '_' and '-': it names history.csv columns
+  Triple position{};
+};
+
 struct OutputSpec {
   long every_steps = 0;             // 0: use every_time
   double every_time = 0;            // 0 and every_steps == 0: first and last state only
@@ -173,6 +180,7 @@ struct OutputSpec {
   bool plots = true;                // write plots/*.png at the end (needs python3-matplotlib)
   std::vector<std::string> fields;  // particle fields written to .vtu; empty = all
   CheckpointSpec checkpoint;
+  std::vector<ProbeSpec> probes;
 };
 
 /// A reference value the run compares itself against (summary.json "checks").

@@ -1,0 +1,83 @@
+// Probes (output.probes): particles followed through the run, recorded at every output time in
+// history.csv. A probe follows the particle whose reference (Lagrangian) position is nearest the
+// probe's position, so a restart follows the same particle. Per probe and output, in this order:
+//   position x (D), displacement u = x - X (D), velocity v (D), Cauchy stress components
+//   (xx; xx yy xy; xx yy zz xy xz yz in 1-, 2-, 3-D) and det F.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "matpoint/io/spec.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+namespace matpoint {
+
+/// The (row, column) of each stress component a probe records, by dimension.
+template <int D>
+constexpr auto probe_stress_components() {
+  if constexpr (D == 1)
+    return std::array<std::array<int, 2>, 1>{{{0, 0}}};
+  else if constexpr (D == 2)
+    return std::array<std::array<int, 2>, 3>{{{0, 0}, {1, 1}, {0, 1}}};
+  else
+    return std::array<std::array<int, 2>, 6>{{{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
+}
+
+/// The history.csv column names of one probe: probe_NAME_x, ..._ux, ..._vx, ..._sxx, ..._J.
+inline std::vector<std::string> probe_column_names(const std::string& name, int dim) {
+  static constexpr const char* axis = "xyz";
+  static const std::array<std::vector<std::string>, 3> stress{
+      {{"sxx"}, {"sxx", "syy", "sxy"}, {"sxx", "syy", "szz", "sxy", "sxz", "syz"}}};
+  const std::string prefix = "probe_" + name + "_";
+  std::vector<std::string> out;
+  for (const char* quantity : {"", "u", "v"})
+    for (int a = 0; a < dim; ++a) out.push_back(prefix + quantity + axis[a]);
+  for (const auto& component : stress[dim - 1]) out.push_back(prefix + component);
+  out.push_back(prefix + "J");
+  return out;
+}
+
+/// Particle ids followed by the probes: the nearest reference position, ties to the lowest id.
+template <int D>
+std::vector<long> probe_particle_ids(const std::vector<Vec<D>>& reference_position,
+                                     const std::vector<ProbeSpec>& probes) {
+  std::vector<long> ids;
+  for (const auto& probe : probes) {
+    Vec<D> target;
+    for (int a = 0; a < D; ++a) target[a] = probe.position[a];
+    long best = -1;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (std::size_t id = 0; id < reference_position.size(); ++id) {
+      const double distance = (reference_position[id] - target).squaredNorm();
+      if (distance < best_distance) {
+        best_distance = distance;
+        best = static_cast<long>(id);
+      }
+    }
+    ids.push_back(best);
+  }
+  return ids;
+}
+
+/// Appends the probe values (column order of probe_column_names) of the particles `ids`.
+template <int D>
+void append_probe_values(const ParticleSet<D>& particles, const std::vector<Vec<D>>& reference_position,
+                         const std::vector<long>& ids, std::vector<double>& out) {
+  if (ids.empty()) return;
+  std::vector<long> index_of(reference_position.size(), -1);
+  for (std::size_t p = 0; p < particles.size(); ++p) index_of[particles.id[p]] = static_cast<long>(p);
+  for (long id : ids) {
+    const auto p = static_cast<std::size_t>(index_of[id]);
+    const Vec<D>& x = particles.x[p];
+    for (int a = 0; a < D; ++a) out.push_back(x[a]);
+    for (int a = 0; a < D; ++a) out.push_back(x[a] - reference_position[id][a]);
+    for (int a = 0; a < D; ++a) out.push_back(particles.v[p][a]);
+    for (const auto& [i, j] : probe_stress_components<D>()) out.push_back(particles.stress[p](i, j));
+    out.push_back(particles.F[p].determinant());
+  }
+}
+
+}  // namespace matpoint
