@@ -290,6 +290,31 @@ TEST(Restart, InterruptedRunWritesACheckpointAndContinuesBitForBit) {
   });
 }
 
+// A restart may change `output`: a probe added there has no values before the restart (nan in
+// history.csv) and the followed particle's values after it.
+TEST(Restart, ProbeAddedAtRestartStartsWithTheContinuedRun) {
+  const Spec spec = parse_spec(input_text(2, "bspline2", R"("flip")"));
+  const fs::path dir = scratch("probe_added");
+  Spec first = spec;
+  first.solver.max_steps = 23;
+  ASSERT_EQ(run_in(first, dir).exit_code, 0);
+  Spec probed = spec;
+  probed.output.probes = {{"p", {0.5, 0.5, 0}}};
+  probed.echo["output"]["probes"] = nlohmann::json::array({{{"name", "p"}, {"position", {0.5, 0.5}}}});
+  const RunResult rest = run_in(probed, dir, dir / kCheckpointFile);
+  ASSERT_EQ(rest.exit_code, 0) << rest.message;
+  ASSERT_EQ(rest.history.probe_columns.size(), 10u);  // 2-D: x, u, v (2 each), 3 stresses, J
+  std::size_t before = 0, after = 0;
+  for (const auto& sample : rest.history.samples) {
+    if (sample.step <= 23) before += sample.probes.empty() ? 1 : 0;
+    if (sample.step > 23) after += sample.probes.size() == 10 ? 1 : 0;
+  }
+  EXPECT_GT(before, 0u);
+  EXPECT_GT(after, 0u);
+  EXPECT_EQ(before + after, rest.history.samples.size());
+  EXPECT_NE(file_text(dir / "history.csv").find(",nan"), std::string::npos);
+}
+
 // --- refused checkpoints ---
 
 struct Written {
