@@ -125,11 +125,6 @@ void add_state_facts(const Spec& spec, const Simulation<D>& sim, const Stepper& 
   if (sim.has_contact && spec.contact.normals == ContactNormals::Logistic)
     facts.logistic_fallbacks = sim.contact.logistic_fallbacks();
   for (const auto& stress : sim.particles.stress) facts.final_stress_xx.push_back(stress(0, 0));
-  const auto probe_ids = probe_particle_ids<D>(sim.initial_position, spec.output.probes);
-  for (long id : probe_ids) {
-    const Vec<D>& X = sim.initial_position[id];
-    facts.probes.push_back({id, std::vector<double>(X.data(), X.data() + D)});
-  }
 }
 
 /// The time loop of one basis and dimension: steps, outputs, checkpoints, guards and signals;
@@ -237,6 +232,10 @@ RunResult run_with(const Spec& spec, const RunOptions& options) {
   facts.outputs = outputs.count();
   facts.momentum_scale = run.momentum_scale;
   add_state_facts(spec, sim, stepper, facts);
+  for (long id : probe_ids) {
+    const Vec<D>& X = sim.initial_position[id];
+    facts.probes.push_back({id, std::vector<double>(X.data(), X.data() + D)});
+  }
 
   result.summary = run_summary(spec, options, facts, outputs.history());
   write_file_atomically(options.out_dir / "summary.json", result.summary.dump(2) + "\n");
