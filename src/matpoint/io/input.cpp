@@ -863,16 +863,23 @@ class SpecReader {
   }
 
   void check_inside_grid(const Value& shape, const BodySpec& body) const {
-    const GridSpec& g = spec_.grid;
     const auto [lo, hi] = bounding_box(body, dim_);
+    if (!box_inside_grid(lo, hi, kInsideTolerance)) shape.fail("a shape inside the grid " + grid_box_text());
+  }
+
+  /// [lo, hi] lies in the grid's box, widened by `relative_tolerance` of its size.
+  [[nodiscard]] bool box_inside_grid(const Triple& lo, const Triple& hi, double relative_tolerance) const {
+    const GridSpec& g = spec_.grid;
     for (int a = 0; a < dim_; ++a) {
-      const double tolerance = kInsideTolerance * (g.max[a] - g.min[a]);
-      if (lo[a] < g.min[a] - tolerance || hi[a] > g.max[a] + tolerance) {
-        shape.fail("a shape inside the grid [min, max] (grid.min = " + vector_text(g.min) +
-                   ", grid.max = " + vector_text(g.max) + ")");
-        return;
-      }
+      const double tolerance = relative_tolerance * (g.max[a] - g.min[a]);
+      if (lo[a] < g.min[a] - tolerance || hi[a] > g.max[a] + tolerance) return false;
     }
+    return true;
+  }
+
+  [[nodiscard]] std::string grid_box_text() const {
+    return "[min, max] (grid.min = " + vector_text(spec_.grid.min) +
+           ", grid.max = " + vector_text(spec_.grid.max) + ")";
   }
 
   [[nodiscard]] std::string vector_text(const Triple& x) const {
@@ -1292,20 +1299,11 @@ class SpecReader {
       const Value position = p.required("position");
       if (const auto x = position.vector(dim_)) {
         probe.position = *x;
-        if (grid_ok_) check_point_inside_grid(position, *x);
+        if (grid_ok_ && !box_inside_grid(*x, *x, 0.0))
+          position.fail("a point inside the grid " + grid_box_text());
       }
       spec_.output.probes.push_back(probe);
     }
-  }
-
-  void check_point_inside_grid(const Value& v, const Triple& x) const {
-    const GridSpec& g = spec_.grid;
-    for (int a = 0; a < dim_; ++a)
-      if (x[a] < g.min[a] || x[a] > g.max[a]) {
-        v.fail("a point inside the grid [min, max] (grid.min = " + vector_text(g.min) +
-               ", grid.max = " + vector_text(g.max) + ")");
-        return;
-      }
   }
 
   /// output.checkpoint: every N steps and/or every T wall-clock minutes (docs/input.md#output).
