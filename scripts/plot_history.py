@@ -131,8 +131,12 @@ def plot_final_state(directory, title, plots):
     mesh = meshio.read(vtu)
     x = mesh.points
     v = mesh.point_data.get("velocity")
+    plastic = mesh.point_data.get("plastic_strain")
     fig, ax = plt.subplots(figsize=(7, 6))
-    if v is None:
+    if plastic is not None and np.max(plastic) > 0:  # plastic materials: colour by plastic strain
+        dots = ax.scatter(x[:, 0], x[:, 1], c=np.ravel(plastic), s=4, cmap="magma_r")
+        fig.colorbar(dots, ax=ax, label="equivalent plastic strain")
+    elif v is None:
         ax.scatter(x[:, 0], x[:, 1], s=4)
     else:
         speed = np.linalg.norm(v, axis=1)

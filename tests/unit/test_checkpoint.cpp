@@ -58,6 +58,7 @@ void fill(Simulation<D>& sim) {
       for (int b = 0; b < D; ++b) ps.F[p](a, b) = next(), ps.stress[p](a, b) = next(), ps.L[p](a, b) = next();
     }
     ps.mass[p] = next(), ps.volume0[p] = next();
+    if (!ps.stress_zz.empty()) ps.stress_zz[p] = next();  // plane strain sigma_zz (2-D)
     if (!ps.corners.empty())
       for (auto& corner : ps.corners[p])
         for (int a = 0; a < D; ++a) corner[a] = next();
@@ -128,6 +129,8 @@ void round_trip(const std::string& shape, const std::string& transfer) {
   EXPECT_TRUE(same(a.x, b.x) && same(a.v, b.v) && same(a.size0, b.size0)) << D << "-D x, v, size0";
   EXPECT_TRUE(same(a.F, b.F) && same(a.stress, b.stress) && same(a.L, b.L)) << D << "-D F, stress, L";
   EXPECT_TRUE(same(a.mass, b.mass) && same(a.volume0, b.volume0));
+  EXPECT_EQ(a.stress_zz.size(), D == 2 ? a.size() : 0u);
+  EXPECT_TRUE(same(a.stress_zz, b.stress_zz)) << "plane-strain sigma_zz";
   EXPECT_TRUE(same(a.id, b.id) && same(a.material, b.material) && same(a.body, b.body));
   EXPECT_EQ(b.state_stride, 2);
   EXPECT_TRUE(same(a.state, b.state)) << "material history state";

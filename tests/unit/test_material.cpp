@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 namespace {
 
 using namespace matpoint;
@@ -80,3 +82,151 @@ TEST(MatrixExponential, MatchesClosedForms) {
 }
 
 }  // namespace
+
+// --- Symmetric Cauchy stress for every model, and each model against a hand calculation ---
+
+namespace {
+
+const LinearElastic kHencky{1000.0, 2.6e6, 1.5e6, 1e6};
+const NeoHookean kLogJ{1000.0, 1.5e6, 1e6, NeoHookeanVolumetric::LogJ};
+const NeoHookean kHalfJ2{1000.0, 1.5e6, 1e6, NeoHookeanVolumetric::HalfJSquared};
+const MieGruneisen kMieGruneisen{8870.0, 4600.0, 1.44, 1.93, 7.6e10};
+const MohrCoulomb kMohrCoulomb{1850.0, {1.0385e6, 0.6923e6}, {5e3, 0.4363323129985824, 0.0}};
+const DruckerPrager kDruckerPrager{1850.0, {1.0385e6, 0.6923e6}, {{5e3, 0.4363323129985824, 0.1}, {}}};
+const VonMises kVonMises{8930.0, {9.68e10, 4.6e10}, {4e8, 1e8}};
+
+/// The Cauchy stress of any model at F from a fresh (virgin) state, and its sigma_zz.
+template <int D>
+Mat<D> stress_of(const Material& material, const Mat<D>& F, double& zz) {
+  std::vector<double> state(8, 0.0);
+  return std::visit(
+      [&](const auto& model) -> Mat<D> {
+        using Model = std::decay_t<decltype(model)>;
+        if constexpr (requires { Model::state_size; })
+          return model.template stress<D>(F, 0.0, state.data(), zz);
+        else
+          return model.template stress<D>(F, zz);
+      },
+      material);
+}
+
+template <int D>
+Mat<D> random_deformation(std::mt19937& rng, double amplitude) {
+  std::uniform_real_distribution<double> u(-amplitude, amplitude);
+  for (;;) {
+    Mat<D> F = Mat<D>::Identity();
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) F(i, j) += u(rng);
+    if (F.determinant() > 0.2) return F;
+  }
+}
+
+}  // namespace
+
+TEST(Material, CauchyStressIsSymmetricForEveryModel) {
+  const std::vector<std::pair<const char*, Material>> models{
+      {"linear_elastic", kHencky},       {"neo_hookean log_j", kLogJ},  {"neo_hookean half_j_squared", kHalfJ2},
+      {"mie_gruneisen", kMieGruneisen}, {"mohr_coulomb", kMohrCoulomb}, {"drucker_prager", kDruckerPrager},
+      {"von_mises", kVonMises}};
+  std::mt19937 rng(42);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Mat<2> F2 = random_deformation<2>(rng, 0.4);
+    const Mat<3> F3 = random_deformation<3>(rng, 0.4);
+    for (const auto& [name, model] : models) {
+      double zz;
+      const Mat<2> s2 = stress_of<2>(model, F2, zz);
+      const Mat<3> s3 = stress_of<3>(model, F3, zz);
+      EXPECT_LE((s2 - s2.transpose()).norm(), 1e-13 * s2.norm()) << name << " 2-D\n" << s2;
+      EXPECT_LE((s3 - s3.transpose()).norm(), 1e-13 * s3.norm()) << name << " 3-D\n" << s3;
+      EXPECT_GT(s3.norm(), 0.0) << name;
+    }
+  }
+}
+
+TEST(Material, LinearElasticIsHenckyByHand) {
+  // lambda = 1.5e6, mu = 1e6. Uniaxial plane-strain stretch F = diag(1.2, 1): eps = (ln 1.2, 0, 0),
+  // tau_11 = (lambda + 2 mu) ln 1.2, tau_22 = tau_33 = lambda ln 1.2, sigma = tau / 1.2.
+  const double lambda = 1.5e6, mu = 1e6, l = std::log(1.2);
+  double zz;
+  Mat<2> F = Mat<2>::Identity();
+  F(0, 0) = 1.2;
+  Mat<2> s = kHencky.stress<2>(F, zz);
+  EXPECT_NEAR(s(0, 0), (lambda + 2 * mu) * l / 1.2, 1e-9 * mu);
+  EXPECT_NEAR(s(1, 1), lambda * l / 1.2, 1e-9 * mu);
+  EXPECT_NEAR(s(0, 1), 0.0, 1e-9 * mu);
+  EXPECT_NEAR(zz, lambda * l / 1.2, 1e-9 * mu);
+  // Simple shear F = [[1, g], [0, 1]], g = 0.2 (J = 1): the principal log strains are
+  // +/- asinh(g / 2) with the major axis at tan(2 theta) = 2 / g, tr eps = 0, so
+  // sigma = 2 mu asinh(g/2) [[cos 2theta, sin 2theta], [sin 2theta, -cos 2theta]], sigma_zz = 0,
+  // cos 2theta = g / sqrt(g^2 + 4), sin 2theta = 2 / sqrt(g^2 + 4).
+  const double g = 0.2, a = std::asinh(g / 2), r = std::sqrt(g * g + 4);
+  F << 1.0, g, 0.0, 1.0;
+  s = kHencky.stress<2>(F, zz);
+  Mat<2> expected;
+  expected << g / r, 2 / r, 2 / r, -g / r;
+  expected *= 2 * mu * a;
+  EXPECT_LT((s - expected).norm(), 1e-9 * expected.norm()) << s << "\n" << expected;
+  EXPECT_NEAR(zz, 0.0, 1e-9 * expected.norm());
+  // 1-D: a bar, sigma = E (F - 1).
+  EXPECT_NEAR(kHencky.stress<1>(Mat<1>(1.01))(0, 0), 2.6e6 * 0.01, 1e-9 * 2.6e6);
+}
+
+TEST(Material, NeoHookeanByHand) {
+  // F = diag(1.2, 1) (plane strain): J = 1.2, B = diag(1.44, 1, 1).
+  //   log_j:          sigma_ii = lambda ln(1.2) / 1.2 + mu (B_ii - 1) / 1.2
+  //   half_j_squared: sigma_ii = lambda / 2 (1.2 - 1 / 1.2) + mu (B_ii - 1) / 1.2 = 275000 + ...
+  const double lambda = 1.5e6, mu = 1e6, J = 1.2;
+  Mat<2> F = Mat<2>::Identity();
+  F(0, 0) = J;
+  double zz;
+  const double log_part = lambda * std::log(1.2) / 1.2;
+  Mat<2> s = kLogJ.stress<2>(F, zz);
+  EXPECT_NEAR(s(0, 0), log_part + mu * 0.44 / 1.2, 1e-9 * mu);
+  EXPECT_NEAR(s(1, 1), log_part, 1e-9 * mu);
+  EXPECT_NEAR(zz, log_part, 1e-9 * mu);
+  s = kHalfJ2.stress<2>(F, zz);
+  EXPECT_NEAR(s(0, 0), 275000.0 + mu * 0.44 / 1.2, 1e-9 * mu);
+  EXPECT_NEAR(s(1, 1), 275000.0, 1e-9 * mu);
+  EXPECT_NEAR(zz, 275000.0, 1e-9 * mu);
+  // Simple shear F = [[1, 0.2], [0, 1]]: J = 1, B = [[1.04, 0.2], [0.2, 1]]: sigma = mu (B - I).
+  F << 1.0, 0.2, 0.0, 1.0;
+  s = kLogJ.stress<2>(F, zz);
+  EXPECT_NEAR(s(0, 0), 40000.0, 1e-9 * mu);
+  EXPECT_NEAR(s(0, 1), 200000.0, 1e-9 * mu);
+  EXPECT_NEAR(s(1, 0), 200000.0, 1e-9 * mu);
+  EXPECT_NEAR(s(1, 1), 0.0, 1e-9 * mu);
+  EXPECT_NEAR(zz, 0.0, 1e-9 * mu);
+}
+
+TEST(Material, MieGruneisenByHand) {
+  // Nickel (Nairn 2026 extraction A11) with G = 76 GPa, from rest (e = 0, eta = 0) to
+  // F = diag(0.98, 1) (plane strain) in one update, q = 0: eta = 0.02, J = 0.98,
+  //   p_H = rho0 C0^2 eta / (1 - S eta)^2,  reference p_r = p_H (1 - Gamma0 eta / 2),
+  //   trapezoid: e = -(p_r / 2) dv / (1 + Gamma0 rho0 dv / 2), dv = -eta / rho0,
+  //   p = p_r + Gamma0 rho0 e,  dev: G J^(-5/3) (B - tr(B3)/3 I), B3 = diag(0.9604, 1, 1).
+  const double rho0 = 8870.0, c0 = 4600.0, S = 1.44, gamma0 = 1.93, G = 7.6e10, eta = 0.02, J = 0.98;
+  const double p_h = rho0 * c0 * c0 * eta / ((1 - S * eta) * (1 - S * eta));
+  const double p_r = p_h * (1 - gamma0 * eta / 2), dv = -eta / rho0;
+  const double e = -(p_r / 2) * dv / (1 + gamma0 * rho0 * dv / 2);
+  const double p = p_r + gamma0 * rho0 * e;
+  const double tr_b = 0.9604 + 2.0, scale = G * std::pow(J, -5.0 / 3.0);
+  double state[2] = {0.0, 0.0}, zz;
+  Mat<2> F = Mat<2>::Identity();
+  F(0, 0) = J;
+  const Mat<2> s = kMieGruneisen.stress<2>(F, 0.0, state, zz);
+  EXPECT_NEAR(s(0, 0), -p + scale * (0.9604 - tr_b / 3), 1e-9 * p);
+  EXPECT_NEAR(s(1, 1), -p + scale * (1.0 - tr_b / 3), 1e-9 * p);
+  EXPECT_NEAR(zz, -p + scale * (1.0 - tr_b / 3), 1e-9 * p);
+  EXPECT_NEAR(state[0], e, 1e-12 * e);
+}
+
+TEST(Material, PlaneStrainLinearElasticityKeepsSigmaZz) {
+  // Small plane-strain stretch: Hooke's law gives sigma_zz = lambda tr(eps) = nu (sigma_xx + sigma_yy).
+  const double E = 2e6, nu = 0.3, lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  const LinearElastic le{1000, E, lambda, mu};
+  Mat<2> F;
+  F << 1.0 + 2e-7, 0.5e-7, 0.5e-7, 1.0 - 0.7e-7;
+  double zz;
+  const Mat<2> s = le.stress<2>(F, zz);
+  EXPECT_NEAR(zz, nu * (s(0, 0) + s(1, 1)), 1e-6 * std::abs(zz));
+}

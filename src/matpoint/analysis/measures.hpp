@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 17> kMeasures{{
+inline constexpr std::array<MeasureInfo, 18> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |E(t) + D(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy, "
      "D = friction work (contact)"},
@@ -24,6 +24,8 @@ inline constexpr std::array<MeasureInfo, 17> kMeasures{{
      "problem whose exact particle velocities stay at their initial values (Nairn 2026 §3.1)"},
     {"final_time", "simulated time reached at the end of the run"},
     {"kinetic_energy_change", "K(end) / K(0) - 1: the signed relative change of kinetic energy over the run"},
+    {"final_kinetic_energy_fraction",
+     "K(end) / max over output times of K: how far a collapse or flow has come to rest"},
     {"late_kinetic_energy_peak_change",
      "max K over the outputs in the last tenth of the run / K(0) - 1: for a periodic motion whose kinetic "
      "energy peaks in that window, the energy lost without the phase error of sampling at one time"},

@@ -168,6 +168,11 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
       if (s.time >= t_end - window) peak = std::max(peak, s.kinetic_energy);
     return peak / history.samples.front().kinetic_energy - 1.0;
   }
+  if (name == "final_kinetic_energy_fraction") {
+    double peak = 0.0;
+    for (const auto& s : history.samples) peak = std::max(peak, s.kinetic_energy);
+    return history.samples.empty() || !(peak > 0.0) ? kNaN : history.samples.back().kinetic_energy / peak;
+  }
   if (name == "kinetic_energy_change" || name == "total_energy_change") {
     if (history.samples.empty()) return kNaN;
     const auto& first = history.samples.front();

@@ -102,7 +102,7 @@ Simulation<D> build_simulation(const Spec& spec) {
   sim.particles.track_corners = spec.solver.shape == ShapeKind::CPDI2;
 
   for (const auto& m : spec.materials) sim.materials.push_back(make_material(m));
-  for (const auto& m : sim.materials) sim.particles.state_stride = std::max(sim.particles.state_stride, state_size(m));
+  set_state_layout<D>(sim.materials, sim.particles);
   std::vector<InputIssue> empty_bodies;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
     const auto& body = spec.bodies[b];

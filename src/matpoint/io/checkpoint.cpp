@@ -232,6 +232,7 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   w.write("particles/size0", flat(ps.size0), {n, D});
   w.write("particles/F", flat(ps.F), {n, D, D});
   w.write("particles/stress", flat(ps.stress), {n, D, D});
+  w.write("particles/stress_zz", ps.stress_zz, {h(ps.stress_zz.size())});  // plane strain only
   w.write("particles/L", flat(ps.L), {n, D, D});
   w.write("particles/material", convert<std::int32_t>(ps.material), {n});
   w.write("particles/body", convert<std::int32_t>(ps.body), {n});
@@ -292,6 +293,7 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   unflat(r.doubles("particles/size0", {n, D}), ps.size0);
   unflat(r.doubles("particles/F", {n, D, D}), ps.F);
   unflat(r.doubles("particles/stress", {n, D, D}), ps.stress);
+  ps.stress_zz = r.doubles("particles/stress_zz", {D == 2 ? n : 0});
   unflat(r.doubles("particles/L", {n, D, D}), ps.L);
   ps.material = convert<int>(r.int32s("particles/material", {n}));
   ps.body = convert<int>(r.int32s("particles/body", {n}));

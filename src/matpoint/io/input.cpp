@@ -153,10 +153,17 @@ std::string_view name_of(const std::array<Named<T>, N>& options, T value) {
   return "?";
 }
 
-constexpr std::array<Named<MaterialModel>, 4> kModels{{{"linear_elastic", MaterialModel::LinearElastic},
+constexpr std::array<Named<MaterialModel>, 7> kModels{{{"linear_elastic", MaterialModel::LinearElastic},
                                                        {"neo_hookean", MaterialModel::NeoHookean},
                                                        {"mie_gruneisen", MaterialModel::MieGruneisen},
-                                                       {"rigid", MaterialModel::Rigid}}};
+                                                       {"rigid", MaterialModel::Rigid},
+                                                       {"mohr_coulomb", MaterialModel::MohrCoulomb},
+                                                       {"drucker_prager", MaterialModel::DruckerPrager},
+                                                       {"von_mises", MaterialModel::VonMises}}};
+constexpr std::array<Named<DruckerPragerMatch>, 3> kDruckerPragerMatches{
+    {{"outer", DruckerPragerMatch::Outer},
+     {"inner", DruckerPragerMatch::Inner},
+     {"plane_strain", DruckerPragerMatch::PlaneStrain}}};
 constexpr std::array<Named<ContactLaw>, 3> kContactLaws{{{"stick", ContactLaw::Stick},
                                                          {"frictionless", ContactLaw::Frictionless},
                                                          {"coulomb", ContactLaw::Coulomb}}};
@@ -618,8 +625,9 @@ class SpecReader {
   }
 
   MaterialSpec read_material(const Value& v) {
-    const Object m(v, {"name", "model", "density", "E", "nu", "lambda", "mu", "volumetric",
-                       "bulk_sound_speed", "hugoniot_slope", "gruneisen", "shear_modulus", "velocity"});
+    const Object m(v, {"name", "model", "density", "E", "nu", "lambda", "mu", "volumetric", "bulk_sound_speed",
+                       "hugoniot_slope", "gruneisen", "shear_modulus", "velocity", "cohesion", "friction_angle",
+                       "dilation_angle", "softening", "match", "yield_stress", "hardening_modulus"});
     MaterialSpec out;
     if (!m.valid()) {
       names_complete_ = false;
@@ -629,6 +637,7 @@ class SpecReader {
     const auto model = m.required("model").choice(kModels);
     set_if(out.model, model);
     set_if(out.density, m.required("density").number(kPositive));
+    if (model) read_plasticity(m, *model, out);
     if (model == MaterialModel::MieGruneisen) return read_mie_gruneisen(m, out);
     if (model == MaterialModel::Rigid) {
       read_rigid(m, out);
@@ -640,11 +649,54 @@ class SpecReader {
     if (m.has("velocity")) m.optional("velocity").fail("no velocity unless model is \"rigid\"");
     read_elasticity(m, out);
     const Value volumetric = m.optional("volumetric");
-    if (model == MaterialModel::LinearElastic && volumetric.present())
-      volumetric.fail("no \"volumetric\" key for a linear_elastic material (only neo_hookean has one)");
+    if (model && model != MaterialModel::NeoHookean && volumetric.present())
+      volumetric.fail("no \"volumetric\" key for a " + std::string(name_of(kModels, *model)) +
+                      " material (only neo_hookean has one)");
     else
       set_if(out.volumetric, volumetric.choice(kVolumetric));
     return out;
+  }
+
+  /// The plastic models' keys (material/mohr_coulomb.hpp, drucker_prager.hpp, von_mises.hpp);
+  /// refuses them on the other models. Angles in degrees.
+  static void read_plasticity(const Object& m, MaterialModel model, MaterialSpec& out) {
+    const bool frictional = model == MaterialModel::MohrCoulomb || model == MaterialModel::DruckerPrager;
+    const bool metal = model == MaterialModel::VonMises;
+    for (const char* key : {"cohesion", "friction_angle", "dilation_angle", "softening"})
+      if (!frictional && m.has(key))
+        m.optional(key).fail(std::string("no \"") + key + "\" unless model is \"mohr_coulomb\" or \"drucker_prager\"");
+    if (model != MaterialModel::DruckerPrager && m.has("match"))
+      m.optional("match").fail("no \"match\" unless model is \"drucker_prager\"");
+    for (const char* key : {"yield_stress", "hardening_modulus"})
+      if (!metal && m.has(key)) m.optional(key).fail(std::string("no \"") + key + "\" unless model is \"von_mises\"");
+    if (frictional) read_friction(m, out);
+    if (model == MaterialModel::DruckerPrager) set_if(out.match, m.optional("match").choice(kDruckerPragerMatches));
+    if (metal) {
+      set_if(out.yield_stress, m.required("yield_stress").number(kPositive));
+      // H < 0 would make the yield stress sigma_y + H eps_p negative at eps_p = sigma_y / |H|.
+      set_if(out.hardening_modulus, m.optional("hardening_modulus").number(kNonNegative));
+    }
+  }
+
+  /// Mohr-Coulomb strength: c >= 0, 0 < phi < 90 deg, 0 <= psi <= phi, optional linear softening
+  /// {"cohesion": c_r, "friction_angle": phi_r, "plastic_strain": eps_s} with c_r <= c,
+  /// psi <= phi_r <= phi.
+  static void read_friction(const Object& m, MaterialSpec& out) {
+    set_if(out.cohesion, m.required("cohesion").number(kNonNegative));
+    const auto phi = m.required("friction_angle").number({0, 90, true, true});
+    set_if(out.friction_angle, phi);
+    const Value psi_value = m.optional("dilation_angle");
+    const auto psi = psi_value.number(phi ? Bounds{0, *phi, false, false} : kNonNegative);
+    set_if(out.dilation_angle, psi);
+    out.residual_cohesion = out.cohesion;
+    out.residual_friction_angle = out.friction_angle;
+    const Object soft(m.optional("softening"), {"cohesion", "friction_angle", "plastic_strain"});
+    if (!m.has("softening") || !soft.valid()) return;
+    set_if(out.residual_cohesion, soft.required("cohesion").number({0, out.cohesion, false, false}));
+    set_if(out.residual_friction_angle,
+           soft.required("friction_angle").number({std::max(out.dilation_angle, 0.0), out.friction_angle,
+                                                  out.dilation_angle == 0.0, false}));
+    set_if(out.softening_strain, soft.required("plastic_strain").number(kPositive));
   }
 
   /// model "mie_gruneisen" (material/mie_gruneisen.hpp): C0, S, Gamma0 and an optional shear modulus.

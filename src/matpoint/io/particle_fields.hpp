@@ -12,9 +12,9 @@ struct ParticleFieldInfo {
   std::string_view content;
 };
 
-inline constexpr std::array<ParticleFieldInfo, 11> kParticleFields{{
+inline constexpr std::array<ParticleFieldInfo, 15> kParticleFields{{
     {"velocity", "particle velocity"},
-    {"stress", "Cauchy stress"},
+    {"stress", "Cauchy stress (3 x 3; in 2-D with the plane-strain sigma_zz)"},
     {"deformation_gradient", "deformation gradient F"},
     {"strain", "Green-Lagrange strain E = (F^T F - I) / 2"},
     {"jacobian", "det F"},
@@ -24,6 +24,10 @@ inline constexpr std::array<ParticleFieldInfo, 11> kParticleFields{{
     {"body", "body index (position in bodies)"},
     {"id", "particle number"},
     {"state", "material history variables, where the model has any"},
+    {"pressure", "-tr(sigma) / 3 of the 3 x 3 Cauchy stress (compression positive)"},
+    {"von_mises", "von Mises stress sqrt(3/2 s : s), s = dev(sigma) of the 3 x 3 Cauchy stress"},
+    {"plastic_strain", "equivalent plastic strain (plastic materials; 0 elsewhere)"},
+    {"yield_state", "return of the last stress update: 0 elastic, 1 surface, 2 edge, 3 apex"},
 }};
 
 [[nodiscard]] constexpr bool is_particle_field(std::string_view name) {

@@ -17,8 +17,9 @@ enum class VelocityTransfer { FLIP, PIC, Blend, FMPM, XPIC };  // particle veloc
 // Grid basis (docs/input.md#solver): point bases, GIMP family, CPDI family.
 enum class ShapeKind { Linear, BSpline2, BSpline3, UGIMP, CpGIMP, CPDI1, CPDI2, B2GIMP, B2CPDI };
 enum class DeformationUpdate { Exponential, Linear };  // dF = exp(L dt) or I + L dt
-enum class MaterialModel { LinearElastic, NeoHookean, MieGruneisen, Rigid };
+enum class MaterialModel { LinearElastic, NeoHookean, MieGruneisen, Rigid, MohrCoulomb, DruckerPrager, VonMises };
 enum class NeoHookeanVolumetric { LogJ, HalfJSquared };  // lambda lnJ/J  or  lambda/2 (J - 1/J)
+enum class DruckerPragerMatch { Outer, Inner, PlaneStrain };  // cone through MC's compression/extension edges, or plane strain
 
 struct GridSpec {
   int dim = 2;
@@ -46,6 +47,13 @@ struct MaterialSpec {
   NeoHookeanVolumetric volumetric = NeoHookeanVolumetric::LogJ;
   // mie_gruneisen (material/mie_gruneisen.hpp): U_s = C0 + S u_p, Gamma0; mu is its shear modulus
   double bulk_sound_speed = 0, hugoniot_slope = 0, gruneisen = 0;
+  // mohr_coulomb, drucker_prager (material/mohr_coulomb.hpp, drucker_prager.hpp): c, phi, psi in
+  // degrees, optional linear softening to (c_r, phi_r) at plastic strain eps_s (0: none)
+  double cohesion = 0, friction_angle = 0, dilation_angle = 0;
+  double residual_cohesion = 0, residual_friction_angle = 0, softening_strain = 0;
+  DruckerPragerMatch match = DruckerPragerMatch::PlaneStrain;
+  // von_mises (material/von_mises.hpp): initial yield stress and linear hardening modulus
+  double yield_stress = 0, hardening_modulus = 0;
   // Rigid: the prescribed velocity of its particles, one function of time per component (zero by
   // default); a rigid material feels no stress and needs "contact" (docs/theory/contact.md).
   std::array<TimeFunction, 3> rigid_velocity{TimeFunction{{}, {0.0}}, TimeFunction{{}, {0.0}},

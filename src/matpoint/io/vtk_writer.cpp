@@ -1,10 +1,12 @@
 #include "matpoint/io/vtk_writer.hpp"
 
 #include "matpoint/io/atomic_file.hpp"
+#include "matpoint/material/hencky_plasticity.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cmath>
 #include <cstring>
 #include <iomanip>
 #include <sstream>
@@ -65,6 +67,34 @@ template <class Fn> std::vector<double> scalars(std::size_t n, Fn&& value_of) {
   return out;
 }
 
+/// Cauchy stress as 3 x 3 per particle; in 2-D (plane strain) with sigma_zz.
+template <int D> std::vector<double> stress_3x3(const ParticleSet<D>& ps) {
+  auto out = padded_tensors<D>(ps.size(), [&](std::size_t p) { return ps.stress[p]; });
+  if constexpr (D == 2)
+    for (std::size_t p = 0; p < ps.size(); ++p) out[9 * p + 8] = ps.stress_zz[p];
+  return out;
+}
+
+/// The three normal stresses (sigma_zz of plane strain in 2-D; 0 outside the model's dimensions).
+template <int D> Vec<3> normal_stresses(const ParticleSet<D>& ps, std::size_t p) {
+  Vec<3> s = Vec<3>::Zero();
+  for (int a = 0; a < D; ++a) s[a] = ps.stress[p](a, a);
+  if constexpr (D == 2) s[2] = ps.stress_zz[p];
+  return s;
+}
+/// Pressure -tr(sigma)/3 (compression positive).
+template <int D> double pressure(const ParticleSet<D>& ps, std::size_t p) { return -normal_stresses(ps, p).sum() / 3.0; }
+/// von Mises stress sqrt(3/2 s : s), s = dev(sigma) of the 3 x 3 stress.
+template <int D> double von_mises(const ParticleSet<D>& ps, std::size_t p) {
+  const Vec<3> normal = normal_stresses(ps, p);
+  const double mean = normal.sum() / 3.0;
+  double ss = (normal.array() - mean).square().sum();
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j)
+      if (i != j) ss += ps.stress[p](i, j) * ps.stress[p](i, j);
+  return std::sqrt(1.5 * ss);
+}
+
 bool wanted(const std::vector<std::string>& fields, const std::string& name) {
   return fields.empty() || std::find(fields.begin(), fields.end(), name) != fields.end();
 }
@@ -76,7 +106,7 @@ template <int D> std::string particles_vtu(const ParticleSet<D>& ps, const std::
   std::ostringstream point_data;
   if (wanted(fields, "velocity")) point_data << data_array("velocity", "Float64", 3, padded_vectors<D>(ps.v));
   if (wanted(fields, "stress"))
-    point_data << data_array("stress", "Float64", 9, padded_tensors<D>(n, [&](std::size_t p) { return ps.stress[p]; }));
+    point_data << data_array("stress", "Float64", 9, stress_3x3(ps));
   if (wanted(fields, "deformation_gradient"))
     point_data << data_array("deformation_gradient", "Float64", 9,
                              padded_tensors<D>(n, [&](std::size_t p) { return ps.F[p]; }));
@@ -97,6 +127,20 @@ template <int D> std::string particles_vtu(const ParticleSet<D>& ps, const std::
   }
   if (wanted(fields, "state") && ps.state_stride > 0)
     point_data << data_array("state", "Float64", ps.state_stride, ps.state);
+  if (wanted(fields, "pressure"))
+    point_data << data_array("pressure", "Float64", 1, scalars(n, [&](std::size_t p) { return pressure(ps, p); }));
+  if (wanted(fields, "von_mises"))
+    point_data << data_array("von_mises", "Float64", 1, scalars(n, [&](std::size_t p) { return von_mises(ps, p); }));
+  if (wanted(fields, "plastic_strain"))
+    point_data << data_array("plastic_strain", "Float64", 1, scalars(n, [&](std::size_t p) {
+                               return ps.plastic(p) ? ps.state[p * ps.state_stride + kEquivalentPlasticStrain] : 0.0;
+                             }));
+  if (wanted(fields, "yield_state")) {
+    std::vector<std::int32_t> state(n, 0);
+    for (std::size_t p = 0; p < n; ++p)
+      if (ps.plastic(p)) state[p] = static_cast<std::int32_t>(ps.state[p * ps.state_stride + kYieldState]);
+    point_data << data_array("yield_state", "Int32", 1, state);
+  }
 
   std::vector<std::int64_t> connectivity(n), offsets(n);
   std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX

@@ -1,9 +1,25 @@
 #include "matpoint/material/material.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
 namespace matpoint {
+
+namespace {
+
+constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+
+MohrCoulombYield mohr_coulomb_yield(const MaterialSpec& spec) {
+  return {spec.cohesion,
+          spec.friction_angle * kRadiansPerDegree,
+          spec.dilation_angle * kRadiansPerDegree,
+          spec.residual_cohesion,
+          spec.residual_friction_angle * kRadiansPerDegree,
+          spec.softening_strain};
+}
+
+}  // namespace
 
 Material make_material(const MaterialSpec& spec) {
   switch (spec.model) {
@@ -13,6 +29,12 @@ Material make_material(const MaterialSpec& spec) {
       return MieGruneisen{spec.density, spec.bulk_sound_speed, spec.hugoniot_slope, spec.gruneisen, spec.mu};
     case MaterialModel::Rigid:
       return Rigid{spec.density};
+    case MaterialModel::MohrCoulomb:
+      return MohrCoulomb{spec.density, {spec.lambda, spec.mu}, mohr_coulomb_yield(spec)};
+    case MaterialModel::DruckerPrager:
+      return DruckerPrager{spec.density, {spec.lambda, spec.mu}, {mohr_coulomb_yield(spec), spec.match}};
+    case MaterialModel::VonMises:
+      return VonMises{spec.density, {spec.lambda, spec.mu}, {spec.yield_stress, spec.hardening_modulus}};
     case MaterialModel::LinearElastic:
       break;
   }
@@ -27,6 +49,22 @@ int state_size(const Material& m) {
         return 0;
       },
       m);
+}
+
+template <int D>
+void set_state_layout(const std::vector<Material>& materials, ParticleSet<D>& particles) {
+  particles.state_stride = 0;
+  particles.plastic_material.assign(materials.size(), 0);
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    particles.state_stride = std::max(particles.state_stride, state_size(materials[m]));
+    particles.plastic_material[m] = std::visit(
+        [](const auto& model) -> char {
+          using Model = std::decay_t<decltype(model)>;
+          return std::is_same_v<Model, MohrCoulomb> || std::is_same_v<Model, DruckerPrager> ||
+                 std::is_same_v<Model, VonMises>;
+        },
+        materials[m]);
+  }
 }
 
 template <int D>
@@ -52,10 +90,14 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
             const double q = av.active() ? av.pressure(particles.mass[p] / (particles.volume0[p] * J),
                                                        particles.L[p].trace(), c)
                                          : 0.0;
-            if constexpr (requires { Model::state_size; })
-              particles.stress[p] = model.template stress<D>(F, q, &particles.state[p * stride]);
-            else
-              particles.stress[p] = model.template stress<D>(F) - q * Mat<D>::Identity();
+            double zz;
+            if constexpr (requires { Model::state_size; }) {
+              particles.stress[p] = model.template stress<D>(F, q, &particles.state[p * stride], zz);
+            } else {
+              particles.stress[p] = model.template stress<D>(F, zz) - q * Mat<D>::Identity();
+              zz -= q;
+            }
+            if constexpr (D == 2) particles.stress_zz[p] = zz;
             if (!particles.stress[p].allFinite()) first_bad = std::max(first_bad, static_cast<long>(n - p));
           }
         },
@@ -88,6 +130,9 @@ double strain_energy(const std::vector<Material>& materials, const ParticleSet<D
   return energy;
 }
 
+template void set_state_layout<1>(const std::vector<Material>&, ParticleSet<1>&);
+template void set_state_layout<2>(const std::vector<Material>&, ParticleSet<2>&);
+template void set_state_layout<3>(const std::vector<Material>&, ParticleSet<3>&);
 template long update_stress<1>(const std::vector<Material>&, ParticleSet<1>&, const ArtificialViscosity&);
 template long update_stress<2>(const std::vector<Material>&, ParticleSet<2>&, const ArtificialViscosity&);
 template long update_stress<3>(const std::vector<Material>&, ParticleSet<3>&, const ArtificialViscosity&);

@@ -1,7 +1,10 @@
 // The material models a simulation can use, and the batched stress update over particles.
 // Adding a model: a struct with stress<D>, energy_density<D>, wave_speed<D> in this folder, one
-// alternative in Material, one case in make_material. A model with history declares
-// `state_size` and takes its state (stress<D>(F, q, state), energy_density<D>(F, state)).
+// alternative in Material, one case in make_material. stress<D>(F, sigma_zz) returns the Cauchy
+// stress and sets its out-of-plane component (kept for plane strain). A model with history declares
+// `state_size` and takes its state (stress<D>(F, q, state, sigma_zz), energy_density<D>(F, state)).
+// The plastic models (hencky_plasticity.hpp) are HenckyPlastic<Yield>: a principal-space return
+// map `Yield` in the shared finite-strain frame.
 #pragma once
 
 #include <variant>
@@ -9,28 +12,37 @@
 
 #include "matpoint/io/spec.hpp"
 #include "matpoint/material/artificial_viscosity.hpp"
+#include "matpoint/material/drucker_prager.hpp"
 #include "matpoint/material/linear_elastic.hpp"
 #include "matpoint/material/mie_gruneisen.hpp"
+#include "matpoint/material/mohr_coulomb.hpp"
 #include "matpoint/material/neo_hookean.hpp"
 #include "matpoint/material/rigid.hpp"
+#include "matpoint/material/von_mises.hpp"
 #include "matpoint/particles/particle_set.hpp"
 
 namespace matpoint {
 
-using Material = std::variant<LinearElastic, NeoHookean, MieGruneisen, Rigid>;
+using Material =
+    std::variant<LinearElastic, NeoHookean, MieGruneisen, Rigid, MohrCoulomb, DruckerPrager, VonMises>;
 
 Material make_material(const MaterialSpec& spec);
 
 /// History values per particle a model needs (0 for the elastic models).
 int state_size(const Material& m);
 
+/// Sets the particles' state layout for these materials: state_stride (the largest state_size)
+/// and which materials use the plastic layout (ParticleSet::plastic_material).
+template <int D>
+void set_state_layout(const std::vector<Material>& materials, ParticleSet<D>& particles);
+
 template <int D>
 double wave_speed(const Material& m) {
   return std::visit([](const auto& model) { return model.template wave_speed<D>(); }, m);
 }
 
-/// sigma_p = sigma(F_p) - q_p I for every particle (q_p: artificial viscosity from L_p, zero when
-/// `av` is inactive). The model is chosen once per material, not per particle. Returns the index of
+/// sigma_p = sigma(F_p) - q_p I (and sigma_zz in 2-D) for every particle (q_p: artificial viscosity from L_p,
+/// zero when `av` is inactive). The model is chosen once per material, not per particle. Returns the index of
 /// the first particle with det F <= 0 or a non-finite stress, or -1.
 template <int D>
 long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles,

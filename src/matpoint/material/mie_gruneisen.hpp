@@ -45,8 +45,9 @@ struct MieGruneisen {
   }
 
   /// Cauchy stress at F with the artificial viscosity q of this step; advances state = {e, eta}.
+  /// sigma_zz: the out-of-plane component in plane strain, -p - q + G J^(-5/3) (1 - tr B / 3).
   template <int D>
-  [[nodiscard]] Mat<D> stress(const Mat<D>& F, double q, double* state) const {
+  [[nodiscard]] Mat<D> stress(const Mat<D>& F, double q, double* state, double& sigma_zz) const {
     const double J = F.determinant();
     const double eta = 1.0 - J, eta_old = state[1], e_old = state[0];
     const double dv = (eta_old - eta) / density;  // change of specific volume
@@ -56,7 +57,14 @@ struct MieGruneisen {
         (e_old - 0.5 * (p_old + reference) * dv - q * dv) / (1.0 + 0.5 * gruneisen * density * dv);
     state[0] = e;
     state[1] = eta;
-    return -(reference + gruneisen * density * e + q) * Mat<D>::Identity() + deviatoric<D>(F, J);
+    const double pressure_q = reference + gruneisen * density * e + q;
+    sigma_zz = -pressure_q + deviatoric_zz<D>(F, J);
+    return -pressure_q * Mat<D>::Identity() + deviatoric<D>(F, J);
+  }
+  template <int D>
+  [[nodiscard]] Mat<D> stress(const Mat<D>& F, double q, double* state) const {
+    double zz;
+    return stress<D>(F, q, state, zz);
   }
   /// Energy per unit initial volume: rho0 e (volumetric and heat) + G/2 (tr Bbar - 3).
   template <int D>
@@ -79,6 +87,13 @@ struct MieGruneisen {
     const Mat<D> B = F * F.transpose();
     const double trB3 = B.trace() + (3 - D);
     return shear_modulus * std::pow(J, -5.0 / 3.0) * (B - trB3 / 3.0 * Mat<D>::Identity());
+  }
+  /// The zz component of the deviatoric part when F_zz = 1 (B_zz = 1).
+  template <int D>
+  [[nodiscard]] double deviatoric_zz(const Mat<D>& F, double J) const {
+    if (shear_modulus == 0.0) return 0.0;
+    const double trB3 = (F * F.transpose()).trace() + (3 - D);
+    return shear_modulus * std::pow(J, -5.0 / 3.0) * (1.0 - trB3 / 3.0);
   }
 };
 

@@ -2,7 +2,8 @@
 //   log_j:          sigma = lambda ln J / J I + mu / J (B - I)       Gong 2015 eq. (4.5), Iaconeta 2017
 //   half_j_squared: sigma = lambda / 2 (J - 1/J) I + mu / J (B - I)  Nairn 2026 eq. (14)
 // B = F F^T. 2-D is plane strain (F_zz = 1), 1-D is uniaxial strain (F = diag(F11, 1, 1)), so the
-// formulas hold with D x D matrices and J = det F.
+// formulas hold with D x D matrices and J = det F; in plane strain sigma_zz = the volumetric part
+// (lambda ln J / J, or lambda/2 (J - 1/J)), since B_zz = 1.
 #pragma once
 
 #include "matpoint/core/types.hpp"
@@ -16,11 +17,17 @@ struct NeoHookean {
   double density, lambda, mu;
   NeoHookeanVolumetric volumetric = NeoHookeanVolumetric::LogJ;
 
-  template <int D> [[nodiscard]] Mat<D> stress(const Mat<D>& F) const {
+  /// Cauchy stress at F, and sigma_zz = the volumetric part (B_zz = 1 in plane strain).
+  template <int D> [[nodiscard]] Mat<D> stress(const Mat<D>& F, double& sigma_zz) const {
     const double J = F.determinant();
     const double pressure_part =
         volumetric == NeoHookeanVolumetric::LogJ ? lambda * std::log(J) / J : 0.5 * lambda * (J - 1.0 / J);
+    sigma_zz = pressure_part;
     return pressure_part * Mat<D>::Identity() + (mu / J) * (F * F.transpose() - Mat<D>::Identity());
+  }
+  template <int D> [[nodiscard]] Mat<D> stress(const Mat<D>& F) const {
+    double zz;
+    return stress<D>(F, zz);
   }
   /// Stored energy per unit initial volume: mu/2 (tr C - D) - mu ln J + U(J), where
   /// U = lambda/2 (ln J)^2 (log_j) or lambda/2 ((J^2 - 1)/2 - ln J) (half_j_squared).

@@ -11,7 +11,8 @@ struct Rigid {
   double density;
 
   template <int D>
-  [[nodiscard]] Mat<D> stress(const Mat<D>& /*F*/) const {
+  [[nodiscard]] Mat<D> stress(const Mat<D>& /*F*/, double& sigma_zz) const {
+    sigma_zz = 0.0;
     return Mat<D>::Zero();
   }
   template <int D>

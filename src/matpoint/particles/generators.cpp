@@ -144,6 +144,7 @@ template <int D> void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particle
   permute<D>(order, particles.size0);
   permute<D>(order, particles.F);
   permute<D>(order, particles.stress);
+  if (!particles.stress_zz.empty()) permute<D>(order, particles.stress_zz);
   permute<D>(order, particles.L);
   permute<D>(order, particles.material);
   permute<D>(order, particles.body);

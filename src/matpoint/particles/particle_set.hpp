@@ -19,13 +19,19 @@ struct ParticleSet {
   std::vector<Vec<D>> size0;    // initial domain edge lengths (for domain-based bases)
   std::vector<Mat<D>> F;        // deformation gradient
   std::vector<Mat<D>> stress;   // Cauchy stress
-  std::vector<Mat<D>> L;        // velocity gradient of the last stress update
-  std::vector<int> material;    // index into the simulation's materials
-  std::vector<int> body;        // index into the input's bodies
-  std::vector<long> id;         // stable id: the generation order, unchanged by sorting
+  // Out-of-plane Cauchy stress sigma_zz of plane strain (2-D only; empty in 1-D and 3-D): every
+  // material computes it with F_zz = 1, and the writers give 2-D stress as 3 x 3 with it.
+  std::vector<double> stress_zz;
+  std::vector<Mat<D>> L;      // velocity gradient of the last stress update
+  std::vector<int> material;  // index into the simulation's materials
+  std::vector<int> body;      // index into the input's bodies
+  std::vector<long> id;       // stable id: the generation order, unchanged by sorting
   // Per-material history: state_stride values per particle (0 for the elastic materials).
   int state_stride = 0;
   std::vector<double> state;
+  // Per material index: 1 where its state has the plastic layout of material/hencky_plasticity.hpp
+  // (equivalent plastic strain, yield state), for the writers. Set with state_stride.
+  std::vector<char> plastic_material;
   // CPDI2 particle domains: corner positions, moved with the grid velocity (Gong 2015 eq. (6.28)).
   // Filled only when track_corners is set before the particles are added; corner c has the sign
   // +1 along axis a where bit a of c is set (tensor order: (-,-), (+,-), (-,+), (+,+) in 2-D).
@@ -33,6 +39,10 @@ struct ParticleSet {
   std::vector<Corners> corners;
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
+  [[nodiscard]] bool plastic(std::size_t p) const {
+    const auto m = static_cast<std::size_t>(material[p]);
+    return m < plastic_material.size() && plastic_material[m] != 0;
+  }
   [[nodiscard]] double volume(std::size_t p) const { return volume0[p] * F[p].determinant(); }
   /// Half-extent of particle p's deformed domain along the unit vector n: the sum over its edges
   /// r_k = F e_k l_k / 2 of |r_k . n| (CPDI's |r1 . n| + |r2 . n|; Nairn 2026 extraction §2.5).
@@ -50,6 +60,7 @@ struct ParticleSet {
     size0.push_back(size);
     F.push_back(Mat<D>::Identity());
     stress.push_back(Mat<D>::Zero());
+    if constexpr (D == 2) stress_zz.push_back(0.0);
     L.push_back(Mat<D>::Zero());
     material.push_back(material_id);
     body.push_back(body_id);

@@ -1,0 +1,468 @@
+// Finite-strain plasticity (material/hencky_plasticity.hpp and the three yield surfaces): the unit
+// tests U-1, U-3 and U-4 of the Iaconeta et al. 2017 extraction (§9.2), with the paper's soil
+// (c = 5 kPa, phi = 25 deg; E = 1.8 MPa, nu = 0.3 as the extraction §7.2.5 recommends):
+//   zero stress at F = I; a large elastic stretch gives tau_A = D eps_A exactly; the returned stress
+//   lies on the yield surface; the apex c cot(phi) = 10.7225 kPa and the unconfined compressive
+//   strength 2 c cos(phi) / (1 - sin(phi)) = 15.6969 kPa (extraction §7.2.2); the closed-form region
+//   choice equals a brute-force closest-point projection in the energy norm; the consistent tangents
+//   equal central differences of the return maps; J2's uniaxial curve is the analytic bilinear one.
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "matpoint/material/material.hpp"
+
+namespace {
+
+using namespace matpoint;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+// E = 1.8 MPa, nu = 0.3: lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)).
+const HenckyElasticity kSoil{1.8e6 * 0.3 / (1.3 * 0.4), 1.8e6 / 2.6};
+const MohrCoulombYield kPaperMC{5e3, 25 * kDeg, 0.0};  // psi = 0 (extraction ambiguity A10)
+const MohrCoulombYield kAssociatedMC{5e3, 25 * kDeg, 25 * kDeg};
+const double kSigmaC = 2 * 5e3 * std::cos(25 * kDeg) / (1 - std::sin(25 * kDeg));
+
+Vec3 sorted_descending(Vec3 v) {
+  std::sort(v.data(), v.data() + 3, std::greater<>());
+  return v;
+}
+
+// --- U-1 and U-4: the frame ---
+
+TEST(Plasticity, ZeroStressAtIdentity) {
+  const MohrCoulomb mc{1850, kSoil, kPaperMC};
+  const DruckerPrager dp{1850, kSoil, {kPaperMC, DruckerPragerMatch::Outer}};
+  const VonMises j2{7800, {1.2e11, 8e10}, {2.5e8, 1e9}};
+  double zz = 1.0;
+  std::vector<double> state(kPlasticStateSize, 0.0);
+  EXPECT_EQ(mc.stress<2>(Mat<2>::Identity(), 0.0, state.data(), zz).norm(), 0.0);
+  EXPECT_EQ(zz, 0.0);
+  EXPECT_EQ(dp.stress<3>(Mat<3>::Identity(), 0.0, state.data(), zz).norm(), 0.0);
+  EXPECT_EQ(j2.stress<2>(Mat<2>::Identity(), 0.0, state.data(), zz).norm(), 0.0);
+  for (double s : state) EXPECT_EQ(s, 0.0);
+}
+
+TEST(Plasticity, LargeElasticStretchIsHencky) {
+  // U-4: below yield, tau_A = D_AB ln(lambda_B) exactly, at any stretch and rotation.
+  const VonMises j2{7800, {1.2e11, 8e10}, {1e12, 0.0}};  // never yields here
+  const Vec3 stretch(1.3, 0.8, 1.1);
+  const double angle = 0.6;
+  Mat3 R;
+  R << std::cos(angle), -std::sin(angle), 0, std::sin(angle), std::cos(angle), 0, 0, 0, 1;
+  const Mat3 F = R * stretch.asDiagonal();
+  std::vector<double> state(kPlasticStateSize, 0.0);
+  double zz;
+  const Mat3 sigma = j2.stress<3>(F, 0.0, state.data(), zz);
+  const Vec3 eps = stretch.array().log().matrix();
+  const Vec3 tau = j2.elastic.lambda * eps.sum() * Vec3::Ones() + 2 * j2.elastic.mu * eps;
+  const Mat3 expected = R * tau.asDiagonal() * R.transpose() / stretch.prod();
+  EXPECT_LT((sigma - expected).norm(), 1e-12 * expected.norm()) << sigma << "\n" << expected;
+  EXPECT_EQ(state[kYieldState], 0.0);
+}
+
+TEST(Plasticity, MohrCoulombApexAndUnconfinedStrengthAreThePapers) {
+  // Extraction §7.2.2: for c = 5 kPa, phi = 25 deg, apex c cot(phi) = 10.7225 kPa, sigma_c = 15.6969 kPa.
+  EXPECT_NEAR(kPaperMC.apex(), 10.7225e3, 0.05);
+  EXPECT_NEAR(kSigmaC, 15.6969e3, 0.05);
+  // A trial far in hydrostatic tension returns to the apex.
+  const PrincipalReturn r = kPaperMC.return_map(kSoil, Vec3(40e3, 35e3, 30e3), 0.0);
+  EXPECT_EQ(r.state, YieldState::Apex);
+  EXPECT_LT((r.tau - Vec3::Constant(10.7225e3)).norm(), 0.1);
+  EXPECT_LT((r.tau - Vec3::Constant(5e3 / std::tan(25 * kDeg))).norm(), 1e-9 * 1e4);
+}
+
+/// Drives uniaxial stress through the finite-strain frame: axial stretch exp(e) along x, the two
+/// lateral stretches found each step so that the lateral Kirchhoff stresses vanish (secant
+/// iterations). Returns the axial Kirchhoff stress at each step.
+template <class Model>
+std::vector<double> uniaxial_stress_curve(const Model& model, const std::vector<double>& axial_log_strain) {
+  std::vector<double> state(kPlasticStateSize, 0.0), out;
+  double lateral = 0.0, previous = 0.0;
+  for (double e : axial_log_strain) {
+    std::vector<double> trial_state;
+    auto lateral_tau = [&](double l, double* axial) {
+      trial_state = state;
+      const Vec3 stretch(std::exp(e), std::exp(l), std::exp(l));
+      const Mat3 tau =
+          hencky_plastic_update(model.elastic, model.yield, Mat3(stretch.asDiagonal()), trial_state.data());
+      if (axial) *axial = tau(0, 0);
+      return tau(1, 1);
+    };
+    double l0 = lateral, l1 = lateral - 0.3 * (e - previous);
+    double f0 = lateral_tau(l0, nullptr), f1 = lateral_tau(l1, nullptr);
+    for (int it = 0; it < 100 && std::abs(f1) > 1e-12 * model.elastic.mu && f1 != f0; ++it) {
+      const double l2 = l1 - f1 * (l1 - l0) / (f1 - f0);
+      l0 = l1;
+      f0 = f1;
+      l1 = l2;
+      f1 = lateral_tau(l1, nullptr);
+    }
+    double axial = 0.0;
+    lateral_tau(l1, &axial);
+    state = trial_state;
+    lateral = l1;
+    previous = e;
+    out.push_back(axial);
+  }
+  return out;
+}
+
+TEST(Plasticity, MohrCoulombUnconfinedCompressionPeaksAtSigmaC) {
+  // Uniaxial compression (tau_1 = tau_2 = 0 > tau_3): the edge return of the paper's soil holds
+  // -tau_3 = sigma_c = 2 c cos(phi)/(1 - sin(phi)) = 15.6969 kPa on the plateau.
+  const MohrCoulomb mc{1850, kSoil, kPaperMC};
+  std::vector<double> strains;
+  for (int i = 1; i <= 40; ++i) strains.push_back(-0.0005 * i);  // to -2 % (yield near -0.87 %)
+  const auto tau = uniaxial_stress_curve(mc, strains);
+  EXPECT_NEAR(-tau.back(), 15.6969e3, 0.05);
+  EXPECT_NEAR(-tau.back(), kSigmaC, 1e-8 * kSigmaC);
+  EXPECT_NEAR(tau[3], 1.8e6 * strains[3], 1e-8 * 1.8e6 * std::abs(strains[3]));  // elastic: E eps
+}
+
+TEST(Plasticity, VonMisesUniaxialCurveIsBilinear) {
+  // In log strain and Kirchhoff stress the monotone uniaxial response of J2 with linear hardening
+  // is exactly bilinear: tau = E eps to sigma_y, then slope E H / (E + H) (de Souza Neto et al.
+  // 2008 §7.3). Copper-like constants: E = 117 GPa, nu = 0.35, sigma_y = 400 MPa, H = 100 MPa.
+  const double E = 117e9, nu = 0.35, sy = 4e8, H = 1e8;
+  const VonMises j2{8930, {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))}, {sy, H}};
+  std::vector<double> strains;
+  for (int i = 1; i <= 50; ++i) strains.push_back(0.0004 * i);  // to 2 % (yield at 0.34 %)
+  const auto tau = uniaxial_stress_curve(j2, strains);
+  for (std::size_t i = 0; i < strains.size(); ++i) {
+    const double e = strains[i];
+    const double analytic = e < sy / E ? E * e : sy + E * H / (E + H) * (e - sy / E);
+    EXPECT_NEAR(tau[i], analytic, 0.01 * analytic) << "eps = " << e;  // issue bound: 1 %
+    EXPECT_NEAR(tau[i], analytic, 1e-7 * analytic) << "eps = " << e;  // exact up to the solve
+  }
+}
+
+/// A plane-strain biaxial test at the material level: F = diag(exp(e_x), exp(e_y), 1), axial
+/// compression e_x imposed, e_y found each step so that tau_yy = -confinement (Kirchhoff). Returns
+/// per step (tau_xx, e_y) and leaves the final state in `state`.
+struct BiaxialStep {
+  double tau_xx, e_y;
+};
+std::vector<BiaxialStep> plane_strain_biaxial(const MohrCoulomb& mc, double confinement,
+                                              const std::vector<double>& axial, std::vector<double>& state) {
+  state.assign(kPlasticStateSize, 0.0);
+  std::vector<BiaxialStep> out;
+  double e_y = 0.0, previous = 0.0;
+  for (double e_x : axial) {
+    std::vector<double> trial_state;
+    auto residual = [&](double y, double* tau_xx) {
+      trial_state = state;
+      const Mat3 F = Vec3(std::exp(e_x), std::exp(y), 1.0).asDiagonal();
+      const Mat3 tau = hencky_plastic_update(mc.elastic, mc.yield, F, trial_state.data());
+      if (tau_xx) *tau_xx = tau(0, 0);
+      return tau(1, 1) + confinement;
+    };
+    double y0 = e_y, y1 = e_y - 0.3 * (e_x - previous) - 1e-5;
+    double f0 = residual(y0, nullptr), f1 = residual(y1, nullptr);
+    for (int it = 0; it < 100 && std::abs(f1) > 1e-12 * confinement && f1 != f0; ++it) {
+      const double y2 = y1 - f1 * (y1 - y0) / (f1 - f0);
+      y0 = y1, f0 = f1, y1 = y2;
+      f1 = residual(y1, nullptr);
+    }
+    double tau_xx = 0.0;
+    residual(y1, &tau_xx);
+    state = trial_state;
+    e_y = y1;
+    previous = e_x;
+    out.push_back({tau_xx, e_y});
+  }
+  return out;
+}
+
+TEST(Plasticity, PlaneStrainBiaxialPeakIsMohrCoulombs) {
+  // Issue verification 2 at the material level: peak sigma_1 = sigma_3 (1 + sin phi)/(1 - sin phi)
+  // + 2 c cos phi / (1 - sin phi) (Kirchhoff stresses, compression positive), within 1 %; with
+  // psi = 0 no plastic volume change (det C_p^-1 = 1); with psi = phi the plateau's strain
+  // increments follow the associated flow rule, de_y / de_x = -m = -(1 + sin psi)/(1 - sin psi).
+  const double sigma_3 = 50e3, s = std::sin(25 * kDeg);
+  const double peak = sigma_3 * (1 + s) / (1 - s) + 2 * 5e3 * std::cos(25 * kDeg) / (1 - s);
+  std::vector<double> axial;
+  for (int i = 1; i <= 120; ++i) axial.push_back(-0.0005 * i);  // to -6 %
+  std::vector<double> state;
+  const MohrCoulomb nondilatant{1850, kSoil, kPaperMC};
+  auto steps = plane_strain_biaxial(nondilatant, sigma_3, axial, state);
+  EXPECT_NEAR(-steps.back().tau_xx, peak, 0.01 * peak);
+  EXPECT_NEAR(-steps.back().tau_xx, peak, 1e-8 * peak);  // exact for the closed-form return
+  EXPECT_EQ(state[kYieldState], static_cast<double>(YieldState::Surface));
+  EXPECT_NEAR(plastic_metric(state.data()).determinant(), 1.0, 1e-12);  // psi = 0: isochoric flow
+  const MohrCoulomb associated{1850, kSoil, kAssociatedMC};
+  steps = plane_strain_biaxial(associated, sigma_3, axial, state);
+  EXPECT_NEAR(-steps.back().tau_xx, peak, 1e-8 * peak);
+  const double m = (1 + s) / (1 - s);
+  const auto& a = steps[steps.size() - 2];
+  const auto& b = steps.back();
+  EXPECT_NEAR((b.e_y - a.e_y) / (axial.back() - axial[axial.size() - 2]), -m, 1e-6 * m);
+  EXPECT_LT(plastic_metric(state.data()).determinant(), 1.0 - 1e-3);  // dilation: det C_p^-1 = J_p^-2 < 1
+}
+
+// --- U-3: the Mohr-Coulomb return against a brute-force closest-point projection ---
+
+/// The closest point of the Mohr-Coulomb pyramid {k s_i - s_j <= sigma_c, i != j} to `trial` in the
+/// energy norm |s - trial|_{D^-1}, by trying every set of 1 to 3 active planes.
+struct Projection {
+  Vec3 tau;
+  int active;
+};
+Projection closest_point(const Vec3& trial, double k, double sigma_c, const Mat3& D) {
+  std::vector<std::pair<Vec3, double>> planes;  // (normal, offset)
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (i != j) {
+        Vec3 a = Vec3::Zero();
+        a[i] = k;
+        a[j] = -1;
+        planes.emplace_back(a, sigma_c);
+      }
+  auto feasible = [&](const Vec3& s) {
+    for (const auto& [a, b] : planes)
+      if (a.dot(s) - b > 1e-9 * sigma_c) return false;
+    return true;
+  };
+  Projection best{trial, 0};
+  double best_distance = feasible(trial) ? 0.0 : INFINITY;
+  const Mat3 D_inv = D.inverse();
+  const int n = static_cast<int>(planes.size());
+  for (int mask = 1; mask < (1 << n); ++mask) {
+    const int count = __builtin_popcount(static_cast<unsigned>(mask));
+    if (count > 3) continue;
+    Eigen::MatrixXd A(count, 3);
+    Eigen::VectorXd b(count);
+    for (int p = 0, row = 0; p < n; ++p)
+      if (mask >> p & 1) {
+        A.row(row) = planes[p].first.transpose();
+        b[row++] = planes[p].second;
+      }
+    const Eigen::MatrixXd ADA = A * D * A.transpose();
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(ADA);
+    if (lu.rank() < count) continue;
+    const Vec3 s = trial - D * A.transpose() * lu.solve(A * trial - b);
+    if (!feasible(s)) continue;
+    const double distance = (s - trial).dot(D_inv * (s - trial));
+    if (distance < best_distance - 1e-12 * sigma_c * sigma_c / D(0, 0)) {
+      best_distance = distance;
+      best.tau = s;
+    }
+  }
+  best.active = 0;
+  for (const auto& [a, b] : planes)
+    if (std::abs(a.dot(best.tau) - b) < 1e-9 * sigma_c) ++best.active;
+  return best;
+}
+
+TEST(Plasticity, MohrCoulombRegionsEqualTheClosestPointProjection) {
+  const double k = (1 + std::sin(25 * kDeg)) / (1 - std::sin(25 * kDeg));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-8 * kSigmaC, 3 * kSigmaC), tension(-kSigmaC, 5 * kSigmaC);
+  int counts[4] = {0, 0, 0, 0};
+  for (int trial_index = 0; trial_index < 4000; ++trial_index) {
+    auto& draw = trial_index % 2 == 0 ? u : tension;  // half near the apex
+    const Vec3 trial = sorted_descending(Vec3(draw(rng), draw(rng), draw(rng)));
+    const PrincipalReturn r = kAssociatedMC.return_map(kSoil, trial, 0.0);
+    const Projection cpp = closest_point(trial, k, kSigmaC, kSoil.matrix());
+    ++counts[static_cast<int>(r.state)];
+    EXPECT_LT((r.tau - cpp.tau).norm(), 1e-8 * kSigmaC) << "trial " << trial.transpose();
+    const YieldState expected = cpp.active == 0   ? YieldState::Elastic
+                                : cpp.active == 1 ? YieldState::Surface
+                                : cpp.active == 2 ? YieldState::Edge
+                                                  : YieldState::Apex;
+    EXPECT_EQ(r.state, expected) << "trial " << trial.transpose();
+    if (r.state != YieldState::Elastic) {  // on the yield surface (U-3: |f| < 1e-10 sigma_c)
+      EXPECT_LT(std::abs(kAssociatedMC.yield_function(r.tau)), 1e-10 * kSigmaC) << trial.transpose();
+    }
+  }
+  for (int region = 0; region < 4; ++region) EXPECT_GT(counts[region], 100) << "region " << region;
+  std::printf("elastic, plane, edge, apex trials: %d %d %d %d\n", counts[0], counts[1], counts[2], counts[3]);
+}
+
+TEST(Plasticity, ReturnedStressesLieOnTheYieldSurface) {
+  const MohrCoulombYield mc_nonassociated{5e3, 25 * kDeg, 5 * kDeg};
+  const DruckerPragerYield dp[3] = {{kPaperMC, DruckerPragerMatch::Outer},
+                                    {kPaperMC, DruckerPragerMatch::Inner},
+                                    {kAssociatedMC, DruckerPragerMatch::PlaneStrain}};
+  const VonMisesYield j2{15e3, 2e5};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-8 * kSigmaC, 3 * kSigmaC);
+  for (int trial_index = 0; trial_index < 2000; ++trial_index) {
+    const Vec3 trial = sorted_descending(Vec3(u(rng), u(rng), u(rng)));
+    for (const auto* mc : {&kPaperMC, &mc_nonassociated}) {
+      const auto r = mc->return_map(kSoil, trial, 0.0);
+      if (r.state != YieldState::Elastic) {
+        EXPECT_LT(std::abs(mc->yield_function(r.tau)), 1e-10 * kSigmaC) << trial.transpose();
+      }
+      EXPECT_GE(r.tau[0], r.tau[1] - 1e-9 * kSigmaC);  // the order of the trial is kept
+      EXPECT_GE(r.tau[1], r.tau[2] - 1e-9 * kSigmaC);
+    }
+    for (const auto& surface : dp) {
+      const auto r = surface.return_map(kSoil, trial, 0.0);
+      if (r.state != YieldState::Elastic) {
+        EXPECT_LT(std::abs(surface.yield_function(r.tau)), 1e-10 * kSigmaC) << trial.transpose();
+      }
+    }
+    const double eps_p = 0.01 * trial_index / 2000.0;
+    const auto r = j2.return_map(kSoil, trial, eps_p);
+    if (r.state != YieldState::Elastic) {
+      EXPECT_LT(std::abs(j2.yield_function(r.tau, eps_p + r.plastic_strain_increment)), 1e-10 * kSigmaC);
+    }
+  }
+}
+
+// --- Consistent tangents against central differences of the return maps ---
+
+/// max |T - T_fd| / max(|T|, |D|) over random trial strains in every region of `yield`.
+template <class Yield>
+void check_principal_tangent(const Yield& yield, double eps_p, const char* name) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.08, 0.02);
+  const double h = 1e-7;
+  const double scale = kSoil.matrix().norm();
+  int checked[4] = {0, 0, 0, 0};
+  double worst = 0.0;
+  for (int trial_index = 0; trial_index < 600; ++trial_index) {
+    const Vec3 eps = sorted_descending(Vec3(u(rng), u(rng), u(rng)));
+    if (eps[0] - eps[1] < 10 * h || eps[1] - eps[2] < 10 * h) continue;
+    const PrincipalReturn r = yield.return_map(kSoil, kSoil.stress(eps), eps_p);
+    Mat3 fd;
+    bool same_region = true;
+    for (int b = 0; b < 3; ++b) {
+      Vec3 ep = eps, em = eps;
+      ep[b] += h;
+      em[b] -= h;
+      const auto rp = yield.return_map(kSoil, kSoil.stress(ep), eps_p);
+      const auto rm = yield.return_map(kSoil, kSoil.stress(em), eps_p);
+      same_region = same_region && rp.state == r.state && rm.state == r.state;
+      fd.col(b) = (rp.tau - rm.tau) / (2 * h);
+    }
+    if (!same_region) continue;  // a region boundary within h: the map has a kink there
+    ++checked[static_cast<int>(r.state)];
+    worst = std::max(worst, (r.tangent - fd).norm() / std::max(r.tangent.norm(), scale));
+    EXPECT_LT((r.tangent - fd).norm(), 1e-6 * std::max(r.tangent.norm(), scale))
+        << name << " region " << static_cast<int>(r.state) << "\n"
+        << r.tangent << "\n"
+        << fd;
+  }
+  EXPECT_GT(checked[1], 20) << name << ": the surface region";
+  std::printf("%s: principal tangent vs central differences, worst relative error %.2e (%d %d %d %d)\n", name,
+              worst, checked[0], checked[1], checked[2], checked[3]);
+}
+
+TEST(Plasticity, PrincipalTangentsEqualFiniteDifferences) {
+  check_principal_tangent(kPaperMC, 0.0, "Mohr-Coulomb psi = 0");
+  check_principal_tangent(MohrCoulombYield{5e3, 25 * kDeg, 10 * kDeg}, 0.0, "Mohr-Coulomb psi = 10");
+  check_principal_tangent(
+      DruckerPragerYield{MohrCoulombYield{5e3, 25 * kDeg, 10 * kDeg}, DruckerPragerMatch::Outer}, 0.0,
+      "Drucker-Prager");
+  check_principal_tangent(VonMisesYield{15e3, 2e5}, 0.01, "von Mises");
+}
+
+/// The same for the Cartesian tangent d tau / d eps^trial (9 x 9) at random non-principal strains.
+template <class Yield>
+void check_cartesian_tangent(const Yield& yield, const char* name) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.04, 0.01);
+  const double h = 1e-7;
+  auto tau_of = [&](const Mat3& eps, PrincipalReturn* out, Spectral* spectral) {
+    const Eigen::SelfAdjointEigenSolver<Mat3> eigen(eps);  // ascending
+    Spectral s;
+    for (int a = 0; a < 3; ++a) {
+      s.eps[a] = eigen.eigenvalues()[2 - a];
+      s.axes.col(a) = eigen.eigenvectors().col(2 - a);
+    }
+    const PrincipalReturn r = yield.return_map(kSoil, kSoil.stress(s.eps), 0.0);
+    if (out) *out = r;
+    if (spectral) *spectral = s;
+    return Mat3(from_principal(r.tau, s.axes));
+  };
+  int checked = 0;
+  double worst = 0.0;
+  for (int trial_index = 0; trial_index < 200; ++trial_index) {
+    Mat3 eps;
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j) eps(i, j) = eps(j, i) = u(rng);
+    PrincipalReturn r;
+    Spectral s;
+    tau_of(eps, &r, &s);
+    if (s.eps[0] - s.eps[1] < 1e-4 || s.eps[1] - s.eps[2] < 1e-4) continue;
+    const Tensor4 C = cartesian_tangent(r, s);
+    Tensor4 fd;
+    bool same_region = true;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) {
+        Mat3 d = Mat3::Zero();
+        d(k, l) += 0.5 * h;
+        d(l, k) += 0.5 * h;
+        PrincipalReturn rp, rm;
+        const Mat3 diff = (tau_of(eps + d, &rp, nullptr) - tau_of(eps - d, &rm, nullptr)) / (2 * h);
+        same_region = same_region && rp.state == r.state && rm.state == r.state;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) fd(3 * i + j, 3 * k + l) = diff(i, j);
+      }
+    if (!same_region) continue;
+    ++checked;
+    worst = std::max(worst, (C - fd).norm() / std::max(C.norm(), kSoil.matrix().norm()));
+    EXPECT_LT((C - fd).norm(), 1e-6 * std::max(C.norm(), kSoil.matrix().norm()))
+        << name << " region " << static_cast<int>(r.state);
+  }
+  EXPECT_GT(checked, 50) << name;
+  std::printf("%s: Cartesian tangent vs central differences, worst relative error %.2e (%d states)\n", name,
+              worst, checked);
+}
+
+TEST(Plasticity, CartesianTangentsEqualFiniteDifferences) {
+  check_cartesian_tangent(kPaperMC, "Mohr-Coulomb");
+  check_cartesian_tangent(DruckerPragerYield{kPaperMC, DruckerPragerMatch::PlaneStrain}, "Drucker-Prager");
+  check_cartesian_tangent(VonMisesYield{15e3, 2e5}, "von Mises");
+}
+
+// --- The exponential return and its stored state ---
+
+TEST(Plasticity, StoredStateReproducesTheReturnedStress) {
+  // After a plastic update, b_e = F C_p^-1 F^T (state) gives back the returned Kirchhoff stress,
+  // and b_e is coaxial with tau (U-4).
+  const MohrCoulomb mc{1850, kSoil, kPaperMC};
+  Mat3 F;
+  F << 0.97, 0.04, 0.01, -0.02, 1.01, 0.0, 0.0, 0.01, 0.995;
+  std::vector<double> state(kPlasticStateSize, 0.0);
+  const Mat3 tau = hencky_plastic_update(mc.elastic, mc.yield, F, state.data());
+  EXPECT_NE(state[kYieldState], 0.0);
+  EXPECT_GT(state[kEquivalentPlasticStrain], 0.0);
+  const Mat3 b_e = F * plastic_metric(state.data()) * F.transpose();
+  const Spectral s = hencky_strain(b_e);
+  const Mat3 tau_again = from_principal(mc.elastic.stress(s.eps), s.axes);
+  EXPECT_LT((tau_again - tau).norm(), 1e-9 * tau.norm());
+  EXPECT_LT((b_e * tau - tau * b_e).norm(), 1e-9 * b_e.norm() * tau.norm());  // coaxial
+  // The same F again is on the surface already: no further plastic strain.
+  const double eps_p = state[kEquivalentPlasticStrain];
+  const Mat3 tau_same = hencky_plastic_update(mc.elastic, mc.yield, F, state.data());
+  EXPECT_LT((tau_same - tau).norm(), 1e-9 * tau.norm());
+  EXPECT_NEAR(state[kEquivalentPlasticStrain], eps_p, 1e-12);
+}
+
+TEST(Plasticity, SimpleShearStaysOnTheYieldSurface) {
+  // U-4: plastic simple shear under a confining stretch: every plastic step ends with f = 0.
+  const MohrCoulomb mc{1850, kSoil, kPaperMC};
+  std::vector<double> state(kPlasticStateSize, 0.0);
+  int plastic = 0;
+  for (int i = 1; i <= 200; ++i) {
+    Mat3 F = Mat3::Identity();
+    F(0, 1) = 0.001 * i;
+    F(1, 1) = 0.995;  // some confinement
+    const Mat3 tau = hencky_plastic_update(mc.elastic, mc.yield, F, state.data());
+    if (state[kYieldState] == 0.0) continue;
+    ++plastic;
+    const Eigen::SelfAdjointEigenSolver<Mat3> eigen(tau);
+    EXPECT_LT(std::abs(mc.yield.yield_function(sorted_descending(eigen.eigenvalues()))), 1e-9 * kSigmaC);
+  }
+  EXPECT_GT(plastic, 100);
+}
+
+}  // namespace
