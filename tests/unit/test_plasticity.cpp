@@ -14,6 +14,8 @@
 #include <random>
 #include <vector>
 
+#include "matpoint/explicit/simulation.hpp"
+#include "matpoint/io/input.hpp"
 #include "matpoint/material/material.hpp"
 
 namespace {
@@ -463,6 +465,33 @@ TEST(Plasticity, SimpleShearStaysOnTheYieldSurface) {
     EXPECT_LT(std::abs(mc.yield.yield_function(sorted_descending(eigen.eigenvalues()))), 1e-9 * kSigmaC);
   }
   EXPECT_GT(plastic, 100);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Plasticity, GeostaticInitialStressIsHeldByThePlasticState) {
+  // bodies[].geostatic: sigma_yy = -rho g (surface - y), sigma_xx = sigma_zz = K0 sigma_yy at t = 0
+  // (a column that starts in equilibrium with its weight instead of falling into it).
+  const Spec spec = parse_spec(R"({
+    "grid": {"dim": 2, "min": [0, 0], "max": [2, 2], "cell_size": 0.1},
+    "materials": [{"name": "soil", "model": "mohr_coulomb", "density": 1850, "E": 1.8e6, "nu": 0.3,
+                   "cohesion": 5000, "friction_angle": 25}],
+    "bodies": [{"material": "soil", "shape": {"type": "box", "min": [0, 0], "max": [1, 1]},
+                "geostatic": {"k0": 0.5, "surface": 1.0}}],
+    "loads": {"gravity": [0, -10]},
+    "solver": {"dt": 1e-4, "end_time": 1e-3}})");
+  const Simulation<2> sim = build_simulation<2>(spec);
+  const auto& ps = sim.particles;
+  ASSERT_GT(ps.size(), 0u);
+  for (std::size_t p = 0; p < ps.size(); ++p) {
+    const double sigma_v = -1850.0 * 10.0 * (1.0 - ps.x[p][1]);
+    EXPECT_NEAR(ps.stress[p](1, 1), sigma_v, 1e-9 * 18500.0);
+    EXPECT_NEAR(ps.stress[p](0, 0), 0.5 * sigma_v, 1e-9 * 18500.0);
+    EXPECT_NEAR(ps.stress_zz[p], 0.5 * sigma_v, 1e-9 * 18500.0);
+    EXPECT_NEAR(ps.stress[p](0, 1), 0.0, 1e-9 * 18500.0);
+  }
 }
 
 }  // namespace

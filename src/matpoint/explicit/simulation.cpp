@@ -116,6 +116,7 @@ Simulation<D> build_simulation(const Spec& spec) {
   if (!empty_bodies.empty()) throw InputError(std::move(empty_bodies));
   if (auto overlaps = overlapping_bodies<D>(spec, sim.particles, h); !overlaps.empty())
     throw InputError(std::move(overlaps));
+  set_geostatic_stress<D>(sim.materials, spec.bodies, spec.loads.gravity, sim.particles);
   sim.initial_velocity = sim.particles.v;  // generation order = id order
   sim.initial_position = sim.particles.x;
   sort_by_cell(sim.grid, sim.particles);

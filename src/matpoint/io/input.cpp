@@ -794,7 +794,7 @@ class SpecReader {
 
   BodySpec read_body(const Value& v, std::size_t index) {
     const Object b(v, {"name", "material", "shape", "particles_per_cell", "velocity", "velocity_sine",
-                       "velocity_gradient", "velocity_noise"});
+                       "velocity_gradient", "velocity_noise", "geostatic"});
     BodySpec out;
     out.name = "body" + std::to_string(index);
     if (!b.valid()) return out;
@@ -811,7 +811,24 @@ class SpecReader {
       if (const auto seed = noise.optional("seed").integer(0, UINT_MAX))
         out.noise_seed = static_cast<unsigned>(*seed);
     }
+    read_geostatic(b.optional("geostatic"), out);
     return out;
+  }
+
+  /// {"k0": K0 >= 0, "surface": height of the free surface}: an initial geostatic stress, held by
+  /// a plastic material's history (the elastic models' stress is a function of F alone).
+  void read_geostatic(const Value& v, BodySpec& out) const {
+    const Object g(v, {"k0", "surface"});
+    if (!v.present() || !g.valid()) return;
+    out.geostatic = true;
+    set_if(out.k0, g.required("k0").number(kNonNegative));
+    set_if(out.geostatic_surface, g.required("surface").number());
+    if (!names_complete_ || static_cast<std::size_t>(out.material) >= spec_.materials.size()) return;
+    const MaterialModel model = spec_.materials[static_cast<std::size_t>(out.material)].model;
+    if (model != MaterialModel::MohrCoulomb && model != MaterialModel::DruckerPrager &&
+        model != MaterialModel::VonMises)
+      v.fail("no geostatic stress for a " + std::string(name_of(kModels, model)) +
+             " body (only mohr_coulomb, drucker_prager and von_mises materials hold an initial stress)");
   }
 
   void read_body_material(const Value& v, BodySpec& out) const {

@@ -83,6 +83,10 @@ struct BodySpec {
   // seed of a stability scan (Gong 2015 extraction S1).
   double noise_amplitude = 0;
   unsigned noise_seed = 1;
+  // Optional geostatic initial stress (plastic materials; material/material.hpp set_geostatic_stress):
+  // sigma_v = -rho g (surface - height), horizontal stresses k0 sigma_v.
+  bool geostatic = false;
+  double k0 = 0, geostatic_surface = 0;
 };
 
 enum class ConditionKind { Fixed, Slip, Velocity, MovingWall };

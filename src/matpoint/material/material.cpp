@@ -1,5 +1,7 @@
 #include "matpoint/material/material.hpp"
 
+#include "matpoint/core/errors.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -64,6 +66,38 @@ void set_state_layout(const std::vector<Material>& materials, ParticleSet<D>& pa
                  std::is_same_v<Model, VonMises>;
         },
         materials[m]);
+  }
+}
+
+template <int D>
+void set_geostatic_stress(const std::vector<Material>& materials, const std::vector<BodySpec>& bodies,
+                          const Triple& gravity, ParticleSet<D>& particles) {
+  constexpr int vertical = D - 1;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (!bodies[b].geostatic) continue;
+    bool along_vertical = gravity[vertical] < 0.0;
+    for (int a = 0; a < D; ++a) along_vertical = along_vertical && (a == vertical || gravity[a] == 0.0);
+    if (!along_vertical)
+      throw InputError({{"bodies[" + std::to_string(b) + "].geostatic", "gravity not along -" +
+                                                                           std::string(1, "xyz"[vertical]),
+                         "loads.gravity along -" + std::string(1, "xyz"[vertical]) + " for a geostatic stress"}});
+    const double g = -gravity[vertical];
+    for (std::size_t p = 0; p < particles.size(); ++p) {
+      if (particles.body[p] != static_cast<int>(b)) continue;
+      std::visit(
+          [&](const auto& model) {
+            using Model = std::decay_t<decltype(model)>;
+            if constexpr (requires { model.elastic.mu; model.yield; }) {  // the plastic models
+              const double depth = std::max(bodies[b].geostatic_surface - particles.x[p][vertical], 0.0);
+              const double vertical_stress = -model.density * g * depth;
+              Vec3 tau = Vec3::Constant(bodies[b].k0 * vertical_stress);  // at F = I, tau = sigma
+              tau[vertical] = vertical_stress;
+              const Vec3 b_e = (2.0 * model.elastic.strain(tau)).array().exp().matrix();
+              store_plastic_metric(Mat3(b_e.asDiagonal()), &particles.state[p * particles.state_stride]);
+            }
+          },
+          materials[static_cast<std::size_t>(particles.material[p])]);
+    }
   }
 }
 
@@ -133,6 +167,12 @@ double strain_energy(const std::vector<Material>& materials, const ParticleSet<D
 template void set_state_layout<1>(const std::vector<Material>&, ParticleSet<1>&);
 template void set_state_layout<2>(const std::vector<Material>&, ParticleSet<2>&);
 template void set_state_layout<3>(const std::vector<Material>&, ParticleSet<3>&);
+template void set_geostatic_stress<1>(const std::vector<Material>&, const std::vector<BodySpec>&, const Triple&,
+                                       ParticleSet<1>&);
+template void set_geostatic_stress<2>(const std::vector<Material>&, const std::vector<BodySpec>&, const Triple&,
+                                       ParticleSet<2>&);
+template void set_geostatic_stress<3>(const std::vector<Material>&, const std::vector<BodySpec>&, const Triple&,
+                                       ParticleSet<3>&);
 template long update_stress<1>(const std::vector<Material>&, ParticleSet<1>&, const ArtificialViscosity&);
 template long update_stress<2>(const std::vector<Material>&, ParticleSet<2>&, const ArtificialViscosity&);
 template long update_stress<3>(const std::vector<Material>&, ParticleSet<3>&, const ArtificialViscosity&);

@@ -41,6 +41,15 @@ double wave_speed(const Material& m) {
   return std::visit([](const auto& model) { return model.template wave_speed<D>(); }, m);
 }
 
+/// Initial geostatic stress for the bodies that ask for it (BodySpec::geostatic): at height h
+/// (the last coordinate), sigma_v = -rho g (surface - h) (0 above the surface), the horizontal
+/// normal stresses k0 sigma_v, no shear. Held by the plastic state at F = I: C_p^-1 = b_e =
+/// exp(2 D^-1 tau0) (hencky_plasticity.hpp). Call before the first stress update. Throws InputError
+/// when gravity is not along -(last axis).
+template <int D>
+void set_geostatic_stress(const std::vector<Material>& materials, const std::vector<BodySpec>& bodies,
+                          const Triple& gravity, ParticleSet<D>& particles);
+
 /// sigma_p = sigma(F_p) - q_p I (and sigma_zz in 2-D) for every particle (q_p: artificial viscosity from L_p,
 /// zero when `av` is inactive). The model is chosen once per material, not per particle. Returns the index of
 /// the first particle with det F <= 0 or a non-finite stress, or -1.
