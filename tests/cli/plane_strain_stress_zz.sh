@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Plane strain keeps sigma_zz: a linear-elastic block stretched by an initial velocity gradient
 # writes a 3 x 3 stress whose zz component is Hooke's nu (sigma_xx + sigma_yy) (plane strain,
-# eps_zz = 0; the Hencky model keeps this identity at any strain, tau_zz = lambda tr(eps) =
-# nu (tau_xx + tau_yy), so the bound is round-off), and pressure / von_mises from that 3 x 3 stress.
+# eps_zz = 0; St Venant-Kirchhoff differs from it by O(strain) ~ 1e-4 here, so the bound is 1e-3
+# of the largest stress), and pressure / von_mises computed from that 3 x 3 stress.
 # shellcheck source-path=SCRIPTDIR source=common.bash
 source "$(dirname "${BASH_SOURCE[0]}")/common.bash"
 
@@ -35,7 +35,7 @@ if not scale > 0:
     sys.exit(f"FAIL: no stress in {files[-1]}")
 zz, hooke = s[:, 2, 2], 0.3 * (s[:, 0, 0] + s[:, 1, 1])
 error = np.abs(zz - hooke).max() / scale
-if not error < 1e-12:
+if not error < 1e-3:
     sys.exit(f"FAIL: sigma_zz differs from nu (sigma_xx + sigma_yy) by {error:.3g} of the stress scale")
 mean = np.trace(s, axis1=1, axis2=2) / 3
 if not np.allclose(mesh.point_data["pressure"].ravel(), -mean, rtol=0, atol=1e-12 * scale):

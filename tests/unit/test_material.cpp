@@ -87,7 +87,7 @@ TEST(MatrixExponential, MatchesClosedForms) {
 
 namespace {
 
-const LinearElastic kHencky{1000.0, 2.6e6, 1.5e6, 1e6};
+const LinearElastic kSvk{1000.0, 2.6e6, 1.5e6, 1e6};
 const NeoHookean kLogJ{1000.0, 1.5e6, 1e6, NeoHookeanVolumetric::LogJ};
 const NeoHookean kHalfJ2{1000.0, 1.5e6, 1e6, NeoHookeanVolumetric::HalfJSquared};
 const MieGruneisen kMieGruneisen{8870.0, 4600.0, 1.44, 1.93, 7.6e10};
@@ -125,7 +125,7 @@ Mat<D> random_deformation(std::mt19937& rng, double amplitude) {
 
 TEST(Material, CauchyStressIsSymmetricForEveryModel) {
   const std::vector<std::pair<const char*, Material>> models{
-      {"linear_elastic", kHencky},       {"neo_hookean log_j", kLogJ},  {"neo_hookean half_j_squared", kHalfJ2},
+      {"linear_elastic", kSvk},       {"neo_hookean log_j", kLogJ},  {"neo_hookean half_j_squared", kHalfJ2},
       {"mie_gruneisen", kMieGruneisen}, {"mohr_coulomb", kMohrCoulomb}, {"drucker_prager", kDruckerPrager},
       {"von_mises", kVonMises}};
   std::mt19937 rng(42);
@@ -143,32 +143,29 @@ TEST(Material, CauchyStressIsSymmetricForEveryModel) {
   }
 }
 
-TEST(Material, LinearElasticIsHenckyByHand) {
-  // lambda = 1.5e6, mu = 1e6. Uniaxial plane-strain stretch F = diag(1.2, 1): eps = (ln 1.2, 0, 0),
-  // tau_11 = (lambda + 2 mu) ln 1.2, tau_22 = tau_33 = lambda ln 1.2, sigma = tau / 1.2.
-  const double lambda = 1.5e6, mu = 1e6, l = std::log(1.2);
+TEST(Material, LinearElasticIsStVenantKirchhoffByHand) {
+  // lambda = 1.5e6, mu = 1e6. Uniaxial plane-strain stretch F = diag(1.2, 1): E11 = (1.2^2 - 1)/2
+  // = 0.22, S11 = (lambda + 2 mu) 0.22 = 770000, S22 = S33 = lambda 0.22 = 330000, J = 1.2,
+  // sigma11 = 1.2^2 S11 / J = 924000, sigma22 = S22 / J = 275000 = sigma_zz.
   double zz;
   Mat<2> F = Mat<2>::Identity();
   F(0, 0) = 1.2;
-  Mat<2> s = kHencky.stress<2>(F, zz);
-  EXPECT_NEAR(s(0, 0), (lambda + 2 * mu) * l / 1.2, 1e-9 * mu);
-  EXPECT_NEAR(s(1, 1), lambda * l / 1.2, 1e-9 * mu);
-  EXPECT_NEAR(s(0, 1), 0.0, 1e-9 * mu);
-  EXPECT_NEAR(zz, lambda * l / 1.2, 1e-9 * mu);
-  // Simple shear F = [[1, g], [0, 1]], g = 0.2 (J = 1): the principal log strains are
-  // +/- asinh(g / 2) with the major axis at tan(2 theta) = 2 / g, tr eps = 0, so
-  // sigma = 2 mu asinh(g/2) [[cos 2theta, sin 2theta], [sin 2theta, -cos 2theta]], sigma_zz = 0,
-  // cos 2theta = g / sqrt(g^2 + 4), sin 2theta = 2 / sqrt(g^2 + 4).
-  const double g = 0.2, a = std::asinh(g / 2), r = std::sqrt(g * g + 4);
-  F << 1.0, g, 0.0, 1.0;
-  s = kHencky.stress<2>(F, zz);
+  Mat<2> s = kSvk.stress<2>(F, zz);
+  EXPECT_NEAR(s(0, 0), 924000.0, 1e-9 * 924000.0);
+  EXPECT_NEAR(s(1, 1), 275000.0, 1e-9 * 924000.0);
+  EXPECT_NEAR(s(0, 1), 0.0, 1e-9 * 924000.0);
+  EXPECT_NEAR(zz, 275000.0, 1e-9 * 924000.0);
+  // Simple shear F = [[1, 0.2], [0, 1]]: E = [[0, 0.1], [0.1, 0.02]], tr E = 0.02,
+  // S = [[30000, 200000], [200000, 70000]], sigma = F S F^T (J = 1) = [[112800, 214000], [214000, 70000]],
+  // sigma_zz = lambda tr E = 30000.
+  F << 1.0, 0.2, 0.0, 1.0;
+  s = kSvk.stress<2>(F, zz);
   Mat<2> expected;
-  expected << g / r, 2 / r, 2 / r, -g / r;
-  expected *= 2 * mu * a;
-  EXPECT_LT((s - expected).norm(), 1e-9 * expected.norm()) << s << "\n" << expected;
-  EXPECT_NEAR(zz, 0.0, 1e-9 * expected.norm());
+  expected << 112800.0, 214000.0, 214000.0, 70000.0;
+  EXPECT_LT((s - expected).norm(), 1e-9 * expected.norm()) << s;
+  EXPECT_NEAR(zz, 30000.0, 1e-9 * expected.norm());
   // 1-D: a bar, sigma = E (F - 1).
-  EXPECT_NEAR(kHencky.stress<1>(Mat<1>(1.01))(0, 0), 2.6e6 * 0.01, 1e-9 * 2.6e6);
+  EXPECT_NEAR(kSvk.stress<1>(Mat<1>(1.01))(0, 0), 2.6e6 * 0.01, 1e-9 * 2.6e6);
 }
 
 TEST(Material, NeoHookeanByHand) {
