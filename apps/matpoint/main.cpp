@@ -8,7 +8,7 @@
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/interrupt.hpp"
 #include "matpoint/core/version.hpp"
-#include "matpoint/explicit/courant_limits.hpp"
+#include "matpoint/explicit/setup_warnings.hpp"
 #include "matpoint/explicit/runner.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/input.hpp"
@@ -48,8 +48,7 @@ int command_run(const std::string& input, const RunOptions& options) {
   } catch (const InputError& error) {
     return report_input_error(error);
   }
-  if (const auto warning = courant_warning(spec.solver); !warning.empty())
-    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  for (const auto& warning : setup_warnings(spec)) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   try {
     install_interrupt_handlers();  // SIGINT / SIGTERM: finish the step, checkpoint, exit 128 + signal
     const RunResult result = run_explicit(spec, options);

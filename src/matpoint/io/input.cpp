@@ -534,7 +534,7 @@ class SpecReader {
     read_solver(Object(top.required("solver"),
                        {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
                         "mapping", "mls", "deformation_update", "dt", "courant", "end_time", "max_steps",
-                        "mass_tolerance", "artificial_viscosity"}));
+                        "mass_tolerance", "artificial_viscosity", "max_energy_growth"}));
     check_one_sided_transfer(top.optional("boundary_conditions"));
     read_output(Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields",
                                                 "checkpoint", "probes"}));
@@ -1135,7 +1135,20 @@ class SpecReader {
     set_if(out.end_time, s.required("end_time").number(kPositive));
     set_if(out.max_steps, s.optional("max_steps").integer(0));
     set_if(out.mass_tolerance, s.optional("mass_tolerance").number({0, 1, false, true}));
+    read_energy_guard(s.optional("max_energy_growth"), out);
     read_artificial_viscosity(Object(s.optional("artificial_viscosity"), {"linear", "quadratic"}), out);
+  }
+
+  /// solver.max_energy_growth: a number > 0 (explicit/energy_guard.hpp), or "off".
+  static void read_energy_guard(const Value& growth, SolverSpec& out) {
+    if (!growth.present()) return;
+    const json& j = growth.get();
+    if (j.is_string() && j.get_ref<const std::string&>() == "off")
+      out.max_energy_growth.reset();
+    else if (j.is_number() && j.get<double>() > 0 && std::isfinite(j.get<double>()))
+      out.max_energy_growth = j.get<double>();
+    else
+      growth.fail("a number > 0, or \"off\"");
   }
 
   /// solver.artificial_viscosity: {"linear": A1, "quadratic": A2}, NairnMPM's defaults 0.2 and 2.0.
