@@ -153,7 +153,7 @@ struct SolverSpec {
   double mass_tolerance =
       1e-12;  // nodes lighter than this fraction of the largest particle mass are inactive
   // Gong 2015 extraction A24: the velocity conditions also hold on the old node velocities, so the
-  // FLIP increment carries no boundary reaction (built-in verification problems only; not an input key).
+  // FLIP increment carries no boundary reaction (input key solver.constrain_old_velocity, default false).
   bool constrain_old_velocity = false;
   // Artificial bulk viscosity coefficients A1 (linear), A2 (quadratic); zero: off.
   double av_linear = 0.0, av_quadratic = 0.0;
@@ -183,6 +183,11 @@ struct OutputSpec {
   std::vector<ProbeSpec> probes;
 };
 
+/// What a check's reference is (docs/verification.md counts them apart): independent of the code
+/// (analytic, a paper, a converged finer run), a value of an earlier run of the code, or a guard
+/// that catches only gross failure.
+enum class CheckKind { Verification, Regression, Guard };
+
 /// A reference value the run compares itself against (summary.json "checks").
 struct CheckSpec {
   std::string name;
@@ -190,6 +195,7 @@ struct CheckSpec {
   double expected = 0;
   double tolerance = 0;  // pass when |measured - expected| <= tolerance
   std::string source;
+  CheckKind kind = CheckKind::Verification;
 };
 
 /// Multimaterial contact (Nairn 2026 §3.2; docs/theory/contact.md): each body (or material) gets
