@@ -154,7 +154,7 @@ struct SolverSpec {
   // every node a particle reaches is active, which conserves momentum exactly (docs/input.md).
   double mass_tolerance = 0.0;
   // Gong 2015 extraction A24: the velocity conditions also hold on the old node velocities, so the
-  // FLIP increment carries no boundary reaction (built-in verification problems only; not an input key).
+  // FLIP increment carries no boundary reaction (input key solver.constrain_old_velocity, default false).
   bool constrain_old_velocity = false;
   // The energy-growth guard (explicit/energy_guard.hpp): stop when the energy balance rises by
   // more than this many times the energy scale; empty: off ("off" in the input).
@@ -190,6 +190,11 @@ struct OutputSpec {
   bool exact_times = true;
 };
 
+/// What a check's reference is (docs/verification.md counts them apart): independent of the code
+/// (analytic, a paper, a converged finer run), a value of an earlier run of the code, or a guard
+/// that catches only gross failure.
+enum class CheckKind { Verification, Regression, Guard };
+
 /// A reference value the run compares itself against (summary.json "checks").
 struct CheckSpec {
   std::string name;
@@ -197,6 +202,7 @@ struct CheckSpec {
   double expected = 0;
   double tolerance = 0;  // pass when |measured - expected| <= tolerance
   std::string source;
+  CheckKind kind = CheckKind::Verification;
 };
 
 /// Multimaterial contact (Nairn 2026 §3.2; docs/theory/contact.md): each body (or material) gets
