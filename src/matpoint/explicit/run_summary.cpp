@@ -10,6 +10,23 @@ namespace matpoint {
 
 namespace {
 
+/// The input's name of a check kind (checks[].kind; docs/verification.md counts each kind apart).
+const char* check_kind_name(CheckKind kind) {
+  switch (kind) {
+    case CheckKind::Regression:
+      return "regression";
+    case CheckKind::Guard:
+      return "guard";
+    case CheckKind::Verification:
+      break;
+  }
+  return "verification";
+}
+
+}  // namespace
+
+namespace {
+
 nlohmann::json energies_json(const HistorySample& s, int dim) {
   return {{"time", s.time},
           {"kinetic_energy", s.kinetic_energy},
@@ -59,6 +76,7 @@ void add_checks(const Spec& spec, const RunFacts& f, const History& history, nlo
                            {"expected", c.expected},
                            {"tolerance", c.tolerance},
                            {"pass", pass},
+                           {"kind", check_kind_name(c.kind)},
                            {"source", c.source}});
   }
   s["checks_pass"] = all_pass;
