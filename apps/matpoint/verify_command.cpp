@@ -10,6 +10,7 @@
 
 #include "matpoint/analysis/verification.hpp"
 #include "matpoint/core/errors.hpp"
+#include "matpoint/core/subprocess.hpp"
 
 namespace matpoint {
 
@@ -28,7 +29,8 @@ std::string slug(const std::string& name) {
 }
 
 /// Writes DIR/plots/convergence_<case>.csv and draws the .png beside it with the project's script.
-bool write_plot(const VerificationOutcome& o, const std::filesystem::path& out, const std::string& scripts) {
+std::string write_plot(const VerificationOutcome& o, const std::filesystem::path& out,
+                       const std::string& scripts) {
   const auto dir = out / "plots";
   std::filesystem::create_directories(dir);
   const auto csv = dir / ("convergence_" + slug(o.spec.name) + ".csv");
@@ -38,12 +40,9 @@ bool write_plot(const VerificationOutcome& o, const std::filesystem::path& out, 
     f << r.h << ',' << r.cells << ',' << (r.finished ? 1 : 0) << ',' << r.displacement << ',' << r.stress
       << ',' << r.density << ',' << r.velocity << ',' << r.grid_velocity << '\n';
   f.close();
-  const auto script = std::filesystem::path(scripts) / "plot_convergence.py";
-  if (scripts.empty() || !std::filesystem::exists(script)) return false;
-  const char* python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string command = std::string(python) + " '" + script.string() + "' '" + csv.string() + "' '" +
-                              o.spec.name + "' > /dev/null 2>&1";
-  return std::system(command.c_str()) == 0;
+  if (scripts.empty()) return "no scripts folder";
+  return run_python_script(std::filesystem::path(scripts) / "plot_convergence.py",
+                           {csv.string(), o.spec.name});
 }
 
 }  // namespace
@@ -72,7 +71,7 @@ void VerifyCommand::add_to(CLI::App& app, std::string scripts_dir) {
   command_->add_flag("!--no-plots", plots_, "do not write plots");
   command_->add_flag("!--nairn-walls", gong_walls_,
                      "keep the wall reaction in the FLIP increment (matpoint's default) instead of Gong's "
-                     "zeroed old velocity (extraction A24)");
+                     "zeroed old velocity (Gong 2015 forms forces only at interior nodes)");
 }
 
 int VerifyCommand::run() const {
@@ -168,9 +167,10 @@ int VerifyCommand::run() const {
       if (outcome.checks.empty())
         std::printf("  (no threshold applies to this basis, amplitude and mesh range: report only)\n");
     }
-    if (plots_ && !write_plot(outcome, out_, scripts_dir_) && !json_)
-      std::fprintf(stderr, "warning: could not draw %s/plots/convergence_%s.png (needs python3-matplotlib)\n",
-                   out_.c_str(), slug(c.name).c_str());
+    if (plots_)
+      if (const auto error = write_plot(outcome, out_, scripts_dir_); !error.empty() && !json_)
+        std::fprintf(stderr, "warning: could not draw %s/plots/convergence_%s.png: %s\n", out_.c_str(),
+                     slug(c.name).c_str(), error.c_str());
     all_pass = all_pass && outcome.pass();
     // A run stopped by a guard (det F <= 0, NaN) is expected only where non-convergence is the claim.
     for (const auto& r : outcome.runs) {

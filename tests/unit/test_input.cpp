@@ -1,11 +1,13 @@
 // Tests of the JSON input reader (src/matpoint/io/input.cpp, format in docs/input.md).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -140,6 +142,86 @@ TEST(InputReader, SyntaxErrorIsOneIssueWithItsLine) {
   EXPECT_EQ(issues[0].path, "(json)");
   EXPECT_NE(issues[0].value.find("line 3"), std::string::npos) << issues[0].value;
   EXPECT_EQ(issues[0].expected, "valid JSON (comments allowed)");
+}
+
+// Every piece of the input echoed in a message is cut at 200 characters (docs/input.md), so a
+// mistake inside a huge token gives a short message, not the token back.
+constexpr std::size_t kEchoLimit = 200;
+
+void expect_short_issues(const std::vector<InputIssue>& issues, std::size_t input_size) {
+  ASSERT_FALSE(issues.empty());
+  for (const auto& issue : issues) {
+    EXPECT_LE(issue.message().size(), 5 * kEchoLimit) << issue.message().substr(0, 1000);
+    EXPECT_LT(issue.message().size(), input_size / 100);
+  }
+}
+
+TEST(InputReader, ParseErrorInsideAHugeNumberIsShort) {
+  std::string text = minimal_input().dump();
+  const std::string end_time = R"("end_time":1.0)";
+  text.replace(text.find(end_time), end_time.size(), R"("end_time":1.)" + std::string(4'000'000, '7') + "x");
+  const auto issues = issues_of(text);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].path, "(json)");
+  EXPECT_NE(issues[0].value.find("line 1"), std::string::npos) << issues[0].value.substr(0, 1000);
+  expect_short_issues(issues, text.size());
+}
+
+TEST(InputReader, UnterminatedCommentIsShort) {
+  const std::string text = minimal_input().dump() + "\n/* " + std::string(4'000'000, 'c');
+  const auto issues = issues_of(text);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_NE(issues[0].value.find("comment"), std::string::npos) << issues[0].value.substr(0, 1000);
+  expect_short_issues(issues, text.size());
+}
+
+TEST(InputReader, HugeUnknownKeyAndValueAreCut) {
+  json input = minimal_input();
+  input["solver"][std::string(1'000'000, 'k')] = std::string(1'000'000, 'v');
+  input["title"] = std::vector<double>(200'000, 1.5);
+  const auto issues = issues_of(input);
+  ASSERT_EQ(issues.size(), 2u) << describe(issues).substr(0, 2000);
+  expect_short_issues(issues, 1'000'000);
+}
+
+// A key given in the wrong section is reported where it is, with where it belongs.
+TEST(InputReader, MisplacedKeySaysWhereItBelongs) {
+  json input = minimal_input();
+  input["gravity"] = {0, -9.81};
+  input["solver"]["every_steps"] = 10;
+  input["bodies"][0]["density"] = 1000;
+  const auto issues = issues_of(input);
+  ASSERT_EQ(issues.size(), 3u) << describe(issues);
+  std::map<std::string, std::string> expected_of;
+  for (const auto& issue : issues) expected_of[issue.path] = issue.expected;
+  EXPECT_NE(expected_of["gravity"].find("gravity belongs under loads"), std::string::npos)
+      << describe(issues);
+  EXPECT_NE(expected_of["solver.every_steps"].find("every_steps belongs under output"), std::string::npos)
+      << describe(issues);
+  EXPECT_NE(expected_of["bodies[0].density"].find("density belongs under materials[]"), std::string::npos)
+      << describe(issues);
+}
+
+TEST(InputReader, UnknownKeyFoundNowhereHasNoHint) {
+  json input = minimal_input();
+  input["solver"]["sceme"] = "usl";
+  const auto issues = issues_of(input);
+  ASSERT_EQ(issues.size(), 1u) << describe(issues);
+  EXPECT_EQ(issues[0].expected.find("belongs under"), std::string::npos) << describe(issues);
+}
+
+// A body outside the grid: which side and by how much.
+TEST(InputReader, BodyOutsideTheGridNamesTheSideAndTheOverhang) {
+  json input = minimal_input();
+  input["bodies"][0]["shape"] = {{"type", "box"}, {"min", {-0.25, 0.25}}, {"max", {0.75, 1.5}}};
+  const auto issues = issues_of(input);
+  ASSERT_EQ(issues.size(), 1u) << describe(issues);
+  EXPECT_EQ(issues[0].path, "bodies[0].shape");
+  EXPECT_NE(issues[0].expected.find("0.25 beyond the x- side (x = -0.25 < grid.min[0] = 0)"),
+            std::string::npos)
+      << describe(issues);
+  EXPECT_NE(issues[0].expected.find("0.5 beyond the y+ side (y = 1.5 > grid.max[1] = 1)"), std::string::npos)
+      << describe(issues);
 }
 
 TEST(InputReader, RepeatedKeyIsAnIssue) {
@@ -473,6 +555,23 @@ TEST(InputReader, MissingFileIsAnIssueNamingTheFile) {
     ASSERT_EQ(e.issues().size(), 1u);
     EXPECT_EQ(e.issues()[0].path, file.string());
   }
+}
+
+// A named pipe is refused by its type before it is opened: opening one with no writer blocks.
+TEST(InputReader, NamedPipeIsRefusedWithoutWaiting) {
+  const std::filesystem::path fifo =
+      std::filesystem::temp_directory_path() / ("matpoint_test_fifo_" + std::to_string(::getpid()) + ".json");
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    (void)load_spec(fifo);  // the old reader blocked here forever
+    ADD_FAILURE() << "a named pipe was accepted";
+  } catch (const InputError& e) {
+    ASSERT_EQ(e.issues().size(), 1u);
+    EXPECT_EQ(e.issues()[0].path, fifo.string());
+    EXPECT_EQ(e.issues()[0].value, "a named pipe");
+  }
+  std::filesystem::remove(fifo);
 }
 
 TEST(InputReader, LoadsAFile) {
