@@ -87,18 +87,19 @@ std::optional<int> handle_command_word(CLI::App& app, int argc, char** argv) {
 std::string describe_extras(const CLI::App& app) {
   const CLI::App* command = &app;
   for (const auto* sub : app.get_subcommands()) command = sub;  // the command that was given
+  const std::string name = command == &app ? "matpoint" : command->get_name();
   std::string out;
   for (const auto& arg : command->remaining(true)) {
     if (!out.empty()) out += "\n";
     if (arg.starts_with("-")) {
-      const std::string name = arg.substr(0, arg.find('='));
-      out += "error: " + with_suggestion("unknown option '" + name + "' for '" + command->get_name() + "'",
-                                         nearest_name(name, long_options(*command)));
+      const std::string option = arg.substr(0, arg.find('='));
+      out += "error: " + with_suggestion("unknown option '" + option + "' for '" + name + "'",
+                                         nearest_name(option, long_options(*command)));
     } else {
-      out += "error: unexpected argument '" + arg + "' for '" + command->get_name() + "'";
+      out += "error: unexpected argument '" + arg + "' for '" + name + "'";
     }
   }
-  return out + "\nRun 'matpoint help " + command->get_name() + "' for its options.";
+  return out + "\nRun 'matpoint help" + (command == &app ? "" : " " + name) + "' for the options.";
 }
 
 }  // namespace matpoint
