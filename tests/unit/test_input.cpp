@@ -79,7 +79,7 @@ TEST(InputReader, MinimalTwoDimensionalInputGetsDefaults) {
   EXPECT_EQ(solver.scheme, UpdateScheme::MUSL);
   EXPECT_EQ(solver.transfer, VelocityTransfer::FLIP);
   EXPECT_EQ(solver.position_alpha, 1.0);
-  EXPECT_EQ(solver.shape, ShapeKind::Linear);
+  EXPECT_EQ(solver.shape, ShapeKind::BSpline2);  // the user guide's recommended basis
   EXPECT_EQ(solver.deformation_update, DeformationUpdate::Exponential);
   EXPECT_FALSE(solver.dt.has_value());
   EXPECT_EQ(solver.courant, 0.5);
@@ -94,6 +94,15 @@ TEST(InputReader, MinimalTwoDimensionalInputGetsDefaults) {
   EXPECT_TRUE(spec.output.fields.empty());
   EXPECT_TRUE(spec.checks.empty());
   EXPECT_EQ(spec.echo, minimal_input());
+}
+
+// IMPM's cell quadrature needs the bilinear basis (Gong 2015 §5.3): its default basis is linear.
+TEST(InputReader, ImpmMappingDefaultsToTheLinearBasis) {
+  json input = minimal_input();
+  input["solver"]["mapping"] = "impm";
+  const auto issues = issues_of(input);
+  ASSERT_TRUE(issues.empty()) << describe(issues);
+  EXPECT_EQ(parse_spec(input.dump()).solver.shape, ShapeKind::Linear);
 }
 
 TEST(InputReader, YoungsModulusAndPoissonRatioGiveLameConstants) {

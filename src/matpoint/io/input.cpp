@@ -1220,6 +1220,10 @@ class SpecReader {
       out.flip_fraction = flip_fraction.number(kUnitInterval).value_or(0.99);
     else if (flip_fraction.present() && (transfer || !s.has("transfer")))
       flip_fraction.fail("no flip_fraction unless transfer is \"blend\"");
+    // Without a basis: quadratic B-splines, the user guide's recommendation (no cell-crossing
+    // noise); linear under mapping "impm", whose cell quadrature needs it (Gong 2015 §5.3).
+    const bool impm = s.optional("mapping").present() && s.optional("mapping").get() == "impm";
+    out.shape = impm ? ShapeKind::Linear : ShapeKind::BSpline2;
     set_if(out.shape, s.optional("shape").choice(kShapeKinds));
     read_mapping(s, out);
     set_if(out.deformation_update, s.optional("deformation_update").choice(kDeformationUpdates));
