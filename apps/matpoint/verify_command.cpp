@@ -53,9 +53,9 @@ void VerifyCommand::add_to(CLI::App& app, std::string scripts_dir) {
       "verify",
       "run built-in verification problems (Gong 2015 manufactured solutions) and report observed orders");
   command_->add_option("name", names_, "problems: mms-1d, mms-2d (default: the whole suite)");
-  command_->add_option("--shape", shape_, "basis for the named problems (linear, bspline2, cpdi1, ...)");
+  command_->add_option("--basis,--shape", shape_, "basis for the named problems (linear, bspline2, cpdi1, ...)");
   command_->add_option("--method", method_,
-                       "mapping for the named problems: mpm (default), impm (Gong ch. 5, linear shape), "
+                       "mapping for the named problems: mpm (default), impm (Gong ch. 5, linear basis), "
                        "improved-cpdi (cpdi1 + MLS velocity, Gong §6.6)");
   command_->add_option("--amplitude", amplitude_, "G of the named problems (e.g. 1e-4 or 0.1)")
       ->check(CLI::PositiveNumber);
@@ -81,7 +81,7 @@ int VerifyCommand::run() const {
     const auto it = kShapes.find(shape_);
     if (it == kShapes.end()) {
       std::fprintf(stderr,
-                   "input error: --shape: got %s, expected one of linear, bspline2, bspline3, ugimp, cpgimp, "
+                   "input error: --basis: got %s, expected one of linear, bspline2, bspline3, ugimp, cpgimp, "
                    "cpdi1, cpdi2, b2gimp, b2cpdi\n",
                    shape_.c_str());
       return kExitBadInput;
@@ -93,7 +93,7 @@ int VerifyCommand::run() const {
     mapping = method_ == "impm" ? Mapping::IMPM : Mapping::MlsVelocity;
     const ShapeKind needed = method_ == "impm" ? ShapeKind::Linear : ShapeKind::CPDI1;
     if (!shape_.empty() && shape != needed) {
-      std::fprintf(stderr, "input error: --shape: got %s, expected %s (or none) with --method %s\n",
+      std::fprintf(stderr, "input error: --basis: got %s, expected %s (or none) with --method %s\n",
                    shape_.c_str(), shape_name(needed), method_.c_str());
       return kExitBadInput;
     }

@@ -438,6 +438,35 @@ TEST(InputReader, ThreeDimensionalGridWithCellSizeVector) {
   EXPECT_EQ(spec.loads.gravity, (Triple{0, 0, -9.81}));
 }
 
+// The basis key was solver.shape (easily confused with bodies[].shape, the geometry): the old
+// spelling is refused with a message naming solver.basis.
+TEST(InputReader, OldBasisKeyIsRefusedNamingTheNewOne) {
+  json input = minimal_input();
+  input["solver"]["shape"] = "bspline2";
+  const auto issues = issues_of(input);
+  ASSERT_EQ(issues.size(), 1u) << describe(issues);
+  EXPECT_EQ(issues[0].path, "solver.shape");
+  EXPECT_NE(issues[0].expected.find("solver.basis"), std::string::npos) << describe(issues);
+  input["solver"].erase("shape");
+  input["solver"]["basis"] = "cpdi1";
+  EXPECT_EQ(parse_spec(input.dump()).solver.shape, ShapeKind::CPDI1);
+}
+
+// A 3-D ball is a "sphere" ("disk" stays accepted in 3-D); a "sphere" in 2-D is refused.
+TEST(InputReader, SphereIsTheThreeDimensionalBall) {
+  json input = minimal_input();
+  use_3d_grid(input);
+  input["bodies"][0]["shape"] = {{"type", "sphere"}, {"center", {0.5, 0.5, 0.5}}, {"radius", 0.25}};
+  const Spec spec = parse_spec(input.dump());
+  EXPECT_EQ(spec.bodies[0].shape, BodyShape::Disk);
+  EXPECT_EQ(spec.bodies[0].radius, 0.25);
+  json flat = minimal_input();
+  flat["bodies"][0]["shape"] = {{"type", "sphere"}, {"center", {0.5, 0.5}}, {"radius", 0.25}};
+  const auto issues = issues_of(flat);
+  ASSERT_EQ(issues.size(), 1u) << describe(issues);
+  EXPECT_EQ(issues[0].path, "bodies[0].shape.type");
+}
+
 TEST(InputReader, OneDimensionalBarWithIntervalBody) {
   const Spec spec = parse_spec(R"({
     "grid": {"dim": 1, "min": [0], "max": [25], "cell_size": [1]},
@@ -522,7 +551,7 @@ TEST(InputReader, BoundaryConditionsMapToVelocityConditions) {
 
 TEST(InputReader, SolverAndOutputOptions) {
   json input = minimal_input();
-  input["solver"] = json::parse(R"({"scheme": "musl", "transfer": "blend", "shape": "bspline2",
+  input["solver"] = json::parse(R"({"scheme": "musl", "transfer": "blend", "basis": "bspline2",
     "deformation_update": "linear", "dt": 1e-4, "end_time": 2, "max_steps": 1e6, "position_alpha": 0,
     "mass_tolerance": 1e-9})");
   input["output"] = json::parse(R"({"every_time": 0.1, "particles": false, "fields": ["stress", "id"]})");

@@ -193,8 +193,10 @@ constexpr std::array<Named<ContactFmpmMethod>, 2> kContactFmpmMethods{
 constexpr std::array<Named<bool>, 2> kContactFields{{{"bodies", false}, {"materials", true}}};
 constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
     {{"log_j", NeoHookeanVolumetric::LogJ}, {"half_j_squared", NeoHookeanVolumetric::HalfJSquared}}};
-constexpr std::array<Named<BodyShape>, 3> kShapes{
-    {{"box", BodyShape::Box}, {"disk", BodyShape::Disk}, {"polygon", BodyShape::Polygon}}};
+constexpr std::array<Named<BodyShape>, 4> kShapes{{{"box", BodyShape::Box},
+                                                   {"disk", BodyShape::Disk},
+                                                   {"sphere", BodyShape::Disk},  // 3-D only
+                                                   {"polygon", BodyShape::Polygon}}};
 constexpr std::array<Named<ConditionKind>, 4> kConditionKinds{{{"fixed", ConditionKind::Fixed},
                                                                {"slip", ConditionKind::Slip},
                                                                {"velocity", ConditionKind::Velocity},
@@ -604,9 +606,9 @@ class SpecReader {
     read_conditions(top.optional("boundary_conditions"));
     read_loads(Object(top.optional("loads"), {"gravity"}));
     read_solver(Object(top.required("solver"),
-                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
-                        "mapping", "mls", "deformation_update", "dt", "courant", "end_time", "max_steps",
-                        "mass_tolerance", "artificial_viscosity"}));
+                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "basis",
+                        "shape", "mapping", "mls", "deformation_update", "dt", "courant", "end_time",
+                        "max_steps", "mass_tolerance", "artificial_viscosity"}));
     check_one_sided_transfer(top.optional("boundary_conditions"));
     read_output(Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields",
                                                 "checkpoint", "probes"}));
@@ -854,7 +856,8 @@ class SpecReader {
   }
 
   void read_shape(const Value& v, BodySpec& out) const {
-    if (!v.expect_object("an object with \"type\": " + join(std::array{"box", "disk", "polygon"}, true)))
+    if (!v.expect_object("an object with \"type\": " +
+                         join(std::array{"box", "disk", "sphere", "polygon"}, true)))
       return;
     const std::size_t issues_before = issues_.size();
     const Value type = v.member("type", true);
@@ -865,8 +868,11 @@ class SpecReader {
       case BodyShape::Box:
         read_box(Object(v, {"type", "min", "max"}), out);
         break;
-      case BodyShape::Disk:
-        read_disk(Object(v, {"type", "center", "radius"}), out);
+      case BodyShape::Disk:  // "disk" in 1-D and 2-D (and, as before, in 3-D), "sphere" in 3-D
+        if (dim_ != 0 && dim_ != 3 && type.get() == "sphere")
+          type.fail("\"disk\" (\"sphere\" needs grid.dim 3)");
+        else
+          read_disk(Object(v, {"type", "center", "radius"}), out);
         break;
       case BodyShape::Polygon:
         if (dim_ != 0 && dim_ != 2)
@@ -1224,7 +1230,10 @@ class SpecReader {
     // noise); linear under mapping "impm", whose cell quadrature needs it (Gong 2015 §5.3).
     const bool impm = s.optional("mapping").present() && s.optional("mapping").get() == "impm";
     out.shape = impm ? ShapeKind::Linear : ShapeKind::BSpline2;
-    set_if(out.shape, s.optional("shape").choice(kShapeKinds));
+    set_if(out.shape, s.optional("basis").choice(kShapeKinds));
+    if (s.has("shape"))  // the key's old name, easily confused with bodies[].shape (a body's geometry)
+      s.optional("shape").fail(
+          "no key shape here: the basis functions are solver.basis (renamed from solver.shape)");
     read_mapping(s, out);
     set_if(out.deformation_update, s.optional("deformation_update").choice(kDeformationUpdates));
     out.dt = s.optional("dt").number(kPositive);
@@ -1257,8 +1266,8 @@ class SpecReader {
     }
     if (out.mapping == Mapping::IMPM && out.shape != ShapeKind::Linear)
       mapping.fail(
-          "\"impm\" with shape \"linear\" (the cell quadrature uses the bilinear N_i), or "
-          "\"mls_velocity\" for the other shapes");
+          "\"impm\" with basis \"linear\" (the cell quadrature uses the bilinear N_i), or "
+          "\"mls_velocity\" for the other bases");
     if (out.transfer == VelocityTransfer::FMPM || out.transfer == VelocityTransfer::XPIC)
       mapping.fail("\"mpm\" with transfer \"fmpm\" or \"xpic\" (their passes re-map the momentum by mass)");
     const Object mls(mls_value, {"degree", "quadrature", "cell_volume"});
@@ -1324,7 +1333,7 @@ class SpecReader {
     for (int a = 0; a < dim_; ++a)
       if (spec_.grid.cells[a] < fewest) {
         issues_.add("grid.cell_size", format_number(spec_.grid.cell_size[a]),
-                    "at least " + std::to_string(fewest) + " cells per direction for solver.shape \"" +
+                    "at least " + std::to_string(fewest) + " cells per direction for solver.basis \"" +
                         std::string(name_of(kShapeKinds, spec_.solver.shape)) + "\" (its stencil is " +
                         std::to_string(fewest + 1) + " nodes wide); the grid has " +
                         std::to_string(spec_.grid.cells[a]) + " along axis " + std::to_string(a));
@@ -1542,7 +1551,7 @@ class SpecReader {
     if (s.transfer == VelocityTransfer::FMPM && s.fmpm.recursion == FmpmRecursion::Binomial)
       v.fail("no contact with fmpm.recursion \"binomial\" (eq. 4 has no per-increment contact step)");
     if (s.shape == ShapeKind::CPDI2)
-      v.fail("no contact with solver.shape \"cpdi2\" (tracked corners); use \"cpdi1\"");
+      v.fail("no contact with solver.basis \"cpdi2\" (tracked corners); use \"cpdi1\"");
     if (s.mapping != Mapping::MPM) v.fail("no contact with solver.mapping other than \"mpm\"");
   }
 
