@@ -12,7 +12,7 @@
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/interrupt.hpp"
 #include "matpoint/core/version.hpp"
-#include "matpoint/explicit/courant_limits.hpp"
+#include "matpoint/explicit/setup_warnings.hpp"
 #include "matpoint/explicit/runner.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/checkpoint.hpp"
@@ -110,6 +110,7 @@ int command_run(const std::string& input, const RunOptions& options, bool overwr
   // The estimate before the wait: always when it is long, otherwise unless --quiet.
   if (const RunEstimate estimate = estimate_run(spec); options.progress || estimate.seconds > 600)
     std::fprintf(stderr, "estimate: %s\n", describe(estimate).c_str());
+  for (const auto& warning : setup_warnings(spec)) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   try {
     install_interrupt_handlers();  // SIGINT / SIGTERM: finish the step, checkpoint, exit 128 + signal
     const RunResult result = run_explicit(spec, options);

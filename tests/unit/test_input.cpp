@@ -85,7 +85,9 @@ TEST(InputReader, MinimalTwoDimensionalInputGetsDefaults) {
   EXPECT_EQ(solver.courant, 0.5);
   EXPECT_EQ(solver.end_time, 1.0);
   EXPECT_EQ(solver.max_steps, 0);
-  EXPECT_EQ(solver.mass_tolerance, 1e-12);
+  EXPECT_EQ(solver.mass_tolerance, 0.0);  // every node a particle reaches is active (momentum exact)
+  ASSERT_TRUE(solver.max_energy_growth.has_value());
+  EXPECT_EQ(*solver.max_energy_growth, 1.0);
 
   EXPECT_EQ(spec.output.every_steps, 0);
   EXPECT_EQ(spec.output.every_time, 0.0);

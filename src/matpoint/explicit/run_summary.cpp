@@ -4,7 +4,7 @@
 
 #include "matpoint/analysis/measures_eval.hpp"
 #include "matpoint/core/version.hpp"
-#include "matpoint/explicit/courant_limits.hpp"
+#include "matpoint/explicit/setup_warnings.hpp"
 
 namespace matpoint {
 
@@ -86,7 +86,8 @@ nlohmann::json run_summary(const Spec& spec, const RunOptions& options, const Ru
                                            {"reference_position", f.probes[k].reference_position}});
   }
   s["warnings"] = nlohmann::json::array();  // e.g. a Courant number above the measured stability limit
-  if (const auto warning = courant_warning(spec.solver); !warning.empty()) s["warnings"].push_back(warning);
+  for (const auto& warning : setup_warnings(spec)) s["warnings"].push_back(warning);
+  for (const auto& warning : f.warnings) s["warnings"].push_back(warning);
   s["dimension"] = f.dimension;
   s["particles"] = f.particles;
   s["nodes"] = f.nodes;

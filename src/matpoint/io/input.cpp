@@ -190,6 +190,9 @@ constexpr std::array<Named<ContactNormals>, 3> kContactNormals{
      {"logistic_regression", ContactNormals::Logistic}}};
 constexpr std::array<Named<ContactFmpmMethod>, 2> kContactFmpmMethods{
     {{"net", ContactFmpmMethod::Net}, {"evolving", ContactFmpmMethod::Evolving}}};
+constexpr std::array<Named<CheckKind>, 3> kCheckKinds{{{"verification", CheckKind::Verification},
+                                                       {"regression", CheckKind::Regression},
+                                                       {"guard", CheckKind::Guard}}};
 constexpr std::array<Named<bool>, 2> kContactFields{{{"bodies", false}, {"materials", true}}};
 constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
     {{"log_j", NeoHookeanVolumetric::LogJ}, {"half_j_squared", NeoHookeanVolumetric::HalfJSquared}}};
@@ -606,9 +609,9 @@ class SpecReader {
     read_conditions(top.optional("boundary_conditions"));
     read_loads(Object(top.optional("loads"), {"gravity"}));
     read_solver(Object(top.required("solver"),
-                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "basis",
-                        "shape", "mapping", "mls", "deformation_update", "dt", "courant", "end_time",
-                        "max_steps", "mass_tolerance", "artificial_viscosity"}));
+                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "basis", "shape",
+                        "mapping", "mls", "deformation_update", "dt", "courant", "end_time", "max_steps",
+                        "mass_tolerance", "constrain_old_velocity", "artificial_viscosity", "max_energy_growth"}));
     check_one_sided_transfer(top.optional("boundary_conditions"));
     read_output(Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields",
                                                 "checkpoint", "probes"}));
@@ -1245,7 +1248,33 @@ class SpecReader {
     set_if(out.end_time, s.required("end_time").number(kPositive));
     set_if(out.max_steps, s.optional("max_steps").integer(0));
     set_if(out.mass_tolerance, s.optional("mass_tolerance").number({0, 1, false, true}));
+    read_constrain_old_velocity(s.optional("constrain_old_velocity"), out);
+    read_energy_guard(s.optional("max_energy_growth"), out);
     read_artificial_viscosity(Object(s.optional("artificial_viscosity"), {"linear", "quadratic"}), out);
+  }
+
+  /// solver.max_energy_growth: a number > 0 (explicit/energy_guard.hpp), or "off".
+  static void read_energy_guard(const Value& growth, SolverSpec& out) {
+    if (!growth.present()) return;
+    const json& j = growth.get();
+    if (j.is_string() && j.get_ref<const std::string&>() == "off")
+      out.max_energy_growth.reset();
+    else if (j.is_number() && j.get<double>() > 0 && std::isfinite(j.get<double>()))
+      out.max_energy_growth = j.get<double>();
+    else
+      growth.fail("a number > 0, or \"off\"");
+  }
+
+  /// solver.constrain_old_velocity: Gong 2015's wall treatment (extraction A24): the velocity
+  /// conditions also hold on the old node velocities v(1), so a = (v+ - v) / dt and the FLIP
+  /// increment carry no wall reaction. The FMPM and XPIC loops apply the conditions themselves.
+  static void read_constrain_old_velocity(const Value& v, SolverSpec& out) {
+    set_if(out.constrain_old_velocity, v.boolean());
+    if (out.constrain_old_velocity &&
+        (out.transfer == VelocityTransfer::FMPM || out.transfer == VelocityTransfer::XPIC))
+      v.fail(
+          "false with transfer \"fmpm\" or \"xpic\" (their loops apply the velocity conditions to "
+          "every increment, Nairn 2026 Table 2)");
   }
 
   /// solver.artificial_viscosity: {"linear": A1, "quadratic": A2}, NairnMPM's defaults 0.2 and 2.0.
@@ -1428,7 +1457,7 @@ class SpecReader {
 
   void read_checks(const Value& list) {
     for (const auto& item : list.elements("an array of check objects")) {
-      const Object c(item, {"name", "measure", "expected", "tolerance", "source"});
+      const Object c(item, {"name", "measure", "expected", "tolerance", "source", "kind"});
       if (!c.valid()) continue;
       CheckSpec check;
       set_if(check.name, c.required("name").string());
@@ -1436,6 +1465,7 @@ class SpecReader {
       set_if(check.expected, c.required("expected").number());
       set_if(check.tolerance, c.required("tolerance").number(kNonNegative));
       set_if(check.source, c.required("source").string());
+      set_if(check.kind, c.optional("kind").choice(kCheckKinds));
       spec_.checks.push_back(check);
     }
   }
