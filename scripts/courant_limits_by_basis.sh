@@ -24,7 +24,7 @@ printf '\n|---|---|'
 for _ in "${orders[@]}"; do printf -- '---|'; done
 printf '\n'
 for basis in "${bases[@]}"; do
-  shape="--set solver.shape=\"$basis\""
+  shape="--set solver.basis=\"$basis\""
   printf '| %s | %s |' "$basis" "$(limit "$shape --set solver.transfer=\"flip\" --set solver.fmpm=null")"
   for k in "${orders[@]}"; do printf ' %s |' "$(limit "$shape --set solver.fmpm.order=$k")"; done
   printf '\n'

@@ -118,7 +118,7 @@ def show_in_readme(readme, plots):
 def run_example(matpoint, name, file, path, figures=False):
     label = name if file == "input.json" else f"{name}/{file}"
     out = os.path.join(ROOT, "out", "verification", label.replace("/", "-").removesuffix(".json"))
-    result = subprocess.run([matpoint, "run", path, "--out", out, "--quiet"], capture_output=True, text=True)
+    result = subprocess.run([matpoint, "run", path, "--out", out, "--quiet", "--overwrite"], capture_output=True, text=True)
     summary_file = os.path.join(out, "summary.json")
     if result.returncode != 0 or not os.path.exists(summary_file):
         return [(label, "run", "verification", "exit 0", "", f"exit {result.returncode}", "FAIL",

@@ -10,6 +10,7 @@
 
 #include "matpoint/analysis/verification.hpp"
 #include "matpoint/core/errors.hpp"
+#include "matpoint/core/subprocess.hpp"
 
 namespace matpoint {
 
@@ -28,7 +29,8 @@ std::string slug(const std::string& name) {
 }
 
 /// Writes DIR/plots/convergence_<case>.csv and draws the .png beside it with the project's script.
-bool write_plot(const VerificationOutcome& o, const std::filesystem::path& out, const std::string& scripts) {
+std::string write_plot(const VerificationOutcome& o, const std::filesystem::path& out,
+                       const std::string& scripts) {
   const auto dir = out / "plots";
   std::filesystem::create_directories(dir);
   const auto csv = dir / ("convergence_" + slug(o.spec.name) + ".csv");
@@ -38,12 +40,9 @@ bool write_plot(const VerificationOutcome& o, const std::filesystem::path& out, 
     f << r.h << ',' << r.cells << ',' << (r.finished ? 1 : 0) << ',' << r.displacement << ',' << r.stress
       << ',' << r.density << ',' << r.velocity << ',' << r.grid_velocity << '\n';
   f.close();
-  const auto script = std::filesystem::path(scripts) / "plot_convergence.py";
-  if (scripts.empty() || !std::filesystem::exists(script)) return false;
-  const char* python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string command = std::string(python) + " '" + script.string() + "' '" + csv.string() + "' '" +
-                              o.spec.name + "' > /dev/null 2>&1";
-  return std::system(command.c_str()) == 0;
+  if (scripts.empty()) return "no scripts folder";
+  return run_python_script(std::filesystem::path(scripts) / "plot_convergence.py",
+                           {csv.string(), o.spec.name});
 }
 
 /// The pass rule of a check in words: ">= 1.8", "0.8 .. 1.2", "< 0.5 and not falling, or det F <= 0".
@@ -69,9 +68,9 @@ void VerifyCommand::add_to(CLI::App& app, std::string scripts_dir) {
       "verify",
       "run built-in verification problems (Gong 2015 manufactured solutions) and report observed orders");
   command_->add_option("name", names_, "problems: mms-1d, mms-2d (default: the whole suite)");
-  command_->add_option("--shape", shape_, "basis for the named problems (linear, bspline2, cpdi1, ...)");
+  command_->add_option("--basis,--shape", shape_, "basis for the named problems (linear, bspline2, cpdi1, ...)");
   command_->add_option("--method", method_,
-                       "mapping for the named problems: mpm (default), impm (Gong ch. 5, linear shape), "
+                       "mapping for the named problems: mpm (default), impm (Gong ch. 5, linear basis), "
                        "improved-cpdi (cpdi1 + MLS velocity, Gong §6.6)");
   command_->add_option("--amplitude", amplitude_, "G of the named problems (e.g. 1e-4 or 0.1)")
       ->check(CLI::PositiveNumber);
@@ -88,7 +87,7 @@ void VerifyCommand::add_to(CLI::App& app, std::string scripts_dir) {
   command_->add_flag(
       "!--nairn-walls", gong_walls_,
       "run every case with matpoint's default walls (solver.constrain_old_velocity = false: the "
-      "FLIP increment keeps the wall reaction) instead of Gong's (extraction A24)");
+      "FLIP increment keeps the wall reaction) instead of Gong's (Gong 2015 forms forces only at interior nodes)");
   command_->add_option("--time", time_,
                        "when the errors of the named problems are measured: T (one period, default) or T/4 "
                        "(extraction §8: stress first order there)");
@@ -101,7 +100,7 @@ int VerifyCommand::run() const {
     const auto it = kShapes.find(shape_);
     if (it == kShapes.end()) {
       std::fprintf(stderr,
-                   "input error: --shape: got %s, expected one of linear, bspline2, bspline3, ugimp, cpgimp, "
+                   "input error: --basis: got %s, expected one of linear, bspline2, bspline3, ugimp, cpgimp, "
                    "cpdi1, cpdi2, b2gimp, b2cpdi\n",
                    shape_.c_str());
       return kExitBadInput;
@@ -113,7 +112,7 @@ int VerifyCommand::run() const {
     mapping = method_ == "impm" ? Mapping::IMPM : Mapping::MlsVelocity;
     const ShapeKind needed = method_ == "impm" ? ShapeKind::Linear : ShapeKind::CPDI1;
     if (!shape_.empty() && shape != needed) {
-      std::fprintf(stderr, "input error: --shape: got %s, expected %s (or none) with --method %s\n",
+      std::fprintf(stderr, "input error: --basis: got %s, expected %s (or none) with --method %s\n",
                    shape_.c_str(), shape_name(needed), method_.c_str());
       return kExitBadInput;
     }
@@ -207,9 +206,10 @@ int VerifyCommand::run() const {
       if (outcome.checks.empty())
         std::printf("  (no threshold applies to this basis, amplitude and mesh range: report only)\n");
     }
-    if (plots_ && !write_plot(outcome, out_, scripts_dir_) && !json_)
-      std::fprintf(stderr, "warning: could not draw %s/plots/convergence_%s.png (needs python3-matplotlib)\n",
-                   out_.c_str(), slug(c.name).c_str());
+    if (plots_)
+      if (const auto error = write_plot(outcome, out_, scripts_dir_); !error.empty() && !json_)
+        std::fprintf(stderr, "warning: could not draw %s/plots/convergence_%s.png: %s\n", out_.c_str(),
+                     slug(c.name).c_str(), error.c_str());
     all_pass = all_pass && outcome.pass();
     // A run stopped by a guard (det F <= 0, NaN) is expected only where non-convergence is the claim.
     for (const auto& r : outcome.runs) {

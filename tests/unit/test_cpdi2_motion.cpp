@@ -30,7 +30,7 @@ TEST_P(Cpdi2Motion, CentroidFollowsTheTransfersPositionUpdate) {
     "bodies": [{"material": "m", "shape": {"type": "box", "min": [0.3, 0.3], "max": [0.6, 0.7]},
                 "particles_per_cell": 2, "velocity": [0.4, -0.3]}],
     "loads": {"gravity": [3, -10]},
-    "solver": {"scheme": "usl", "shape": "cpdi2", "dt": 1e-3, "end_time": 1, "transfer": ")") +
+    "solver": {"scheme": "usl", "basis": "cpdi2", "dt": 1e-3, "end_time": 1, "transfer": ")") +
                          c.transfer + R"(", "position_alpha": )" + std::to_string(c.alpha) + "}}");
   Simulation<2> sim = build_simulation<2>(spec);
   ExplicitStepper<2, CpdiStencils<2, HatKernel, CpdiDomain::Tracked>> stepper(sim);

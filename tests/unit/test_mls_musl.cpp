@@ -23,7 +23,7 @@ TEST(MlsMusl, RigidRotationGivesNoDilatation) {
     "materials": [{"name": "m", "model": "linear_elastic", "density": 1000, "E": 1e4, "nu": 0.3}],
     "bodies": [{"material": "m", "shape": {"type": "box", "min": [0.4, 0.4], "max": [1.6, 1.6]},
                 "particles_per_cell": 3}],
-    "solver": {"scheme": "musl", "transfer": "flip", "shape": "bspline2", "mapping": "mls_velocity",
+    "solver": {"scheme": "musl", "transfer": "flip", "basis": "bspline2", "mapping": "mls_velocity",
                "dt": 1e-3, "end_time": 1}
   })");
   Simulation<2> sim = build_simulation<2>(spec);

@@ -23,7 +23,7 @@ Spec falling_block() {
     "bodies": [{"material": "m", "shape": {"type": "box", "min": [0.4, 1.6], "max": [0.6, 1.8]},
                 "particles_per_cell": 2}],
     "loads": {"gravity": [0, -10]},
-    "solver": {"scheme": "usf", "transfer": "flip", "shape": "bspline2", "dt": 1e-3, "end_time": 0.4},
+    "solver": {"scheme": "usf", "transfer": "flip", "basis": "bspline2", "dt": 1e-3, "end_time": 0.4},
     "output": {"every_time": 0.05},
     "checks": [
       {"name": "balance", "measure": "max_relative_energy_error", "expected": 0, "tolerance": 1, "source": "t"},

@@ -79,6 +79,22 @@ inline std::string output_name(long index, const char* prefix) {
 
 }  // namespace run_outputs_detail
 
+/// The names of the .vtu `state` components: the models' own where the materials with history
+/// agree, "a|b" where two models use a component for different things.
+template <int D>
+std::vector<std::string> state_component_names(const Simulation<D>& sim) {
+  std::vector<std::string> names(static_cast<std::size_t>(sim.particles.state_stride));
+  for (const auto& material : sim.materials) {
+    const auto own = state_names(material);
+    for (std::size_t i = 0; i < own.size() && i < names.size(); ++i)
+      if (names[i].empty())
+        names[i] = own[i];
+      else if (names[i] != own[i])
+        names[i] += "|" + own[i];
+  }
+  return names;
+}
+
 /// One history.csv row of the simulation's present state; `probe_ids`: the particles of output.probes.
 template <int D>
 HistorySample history_sample(const Simulation<D>& sim, int body_count, const std::vector<long>& probe_ids) {
@@ -145,7 +161,9 @@ class RunOutputs {
       write_history();
     if (spec_.output.particles) {
       const std::string name = run_outputs_detail::output_name(outputs_, "particles_");
-      write_file_atomically(out_dir_ / name, particles_vtu(sim.particles, spec_.output.fields));
+      write_file_atomically(out_dir_ / name,
+                            particles_vtu(sim.particles, spec_.output.fields, &sim.initial_position,
+                                          state_component_names(sim)));
       pvd_.add(sim.time, name);
       if (write_domains_) {
         const std::string domains = run_outputs_detail::output_name(outputs_, "domains_");

@@ -5,19 +5,20 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <ctime>
 #include <sstream>
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/interrupt.hpp"
 #include "matpoint/core/progress.hpp"
+#include "matpoint/core/subprocess.hpp"
 #include "matpoint/explicit/energy_guard.hpp"
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/explicit/run_outputs.hpp"
 #include "matpoint/explicit/run_summary.hpp"
 #include "matpoint/io/atomic_file.hpp"
 #include "matpoint/io/checkpoint.hpp"
+#include "matpoint/io/output_folder.hpp"
 #include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
@@ -66,6 +67,7 @@ RunCounters start_state(const Spec& spec, const RunOptions& options, Simulation<
   RunCounters run;
   if (!options.restart.empty()) {
     read_checkpoint<D>(options.restart, spec.echo, sim, run, history);
+    refuse_stale_checkpoint(options.restart, sim.step);  // a finished run went further than it
     if (run.threads != current_threads())
       std::fprintf(
           stderr,
@@ -294,8 +296,9 @@ RunResult run_with(const Spec& spec, const RunOptions& options) {
 
   result.summary = run_summary(spec, options, facts, outputs.history());
   write_file_atomically(options.out_dir / "summary.json", result.summary.dump(2) + "\n");
-  if (spec.output.plots && !options.scripts_dir.empty() && !draw_plots(options.out_dir, options.scripts_dir))
-    std::fprintf(stderr, "warning: could not draw plots (needs python3-matplotlib)\n");
+  if (spec.output.plots && !options.scripts_dir.empty())
+    if (const auto error = draw_plots(options.out_dir, options.scripts_dir); !error.empty())
+      std::fprintf(stderr, "warning: could not draw plots: %s\n", error.c_str());
   result.history = outputs.take_history();
   return result;
 }
@@ -349,14 +352,8 @@ RunResult run_explicit(const Spec& spec, const RunOptions& options) {
   }
 }
 
-bool draw_plots(const std::filesystem::path& out_dir, const std::filesystem::path& scripts_dir) {
-  const auto script = scripts_dir / "plot_history.py";
-  if (!std::filesystem::exists(script)) return false;
-  // Debian's interpreter first: python3-matplotlib installs there, whatever else is on PATH.
-  const char* python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string command =
-      std::string(python) + " '" + script.string() + "' '" + out_dir.string() + "' > /dev/null";
-  return std::system(command.c_str()) == 0;
+std::string draw_plots(const std::filesystem::path& out_dir, const std::filesystem::path& scripts_dir) {
+  return run_python_script(scripts_dir / "plot_history.py", {out_dir.string()});
 }
 
 }  // namespace matpoint

@@ -12,9 +12,11 @@ struct ParticleFieldInfo {
   std::string_view content;
 };
 
-inline constexpr std::array<ParticleFieldInfo, 11> kParticleFields{{
+inline constexpr std::array<ParticleFieldInfo, 13> kParticleFields{{
     {"velocity", "particle velocity"},
+    {"displacement", "displacement u = x - X from the initial position"},
     {"stress", "Cauchy stress"},
+    {"pressure", "pressure p = -tr(sigma) / 3"},
     {"deformation_gradient", "deformation gradient F"},
     {"strain", "Green-Lagrange strain E = (F^T F - I) / 2"},
     {"jacobian", "det F"},
@@ -23,7 +25,7 @@ inline constexpr std::array<ParticleFieldInfo, 11> kParticleFields{{
     {"material", "material index (position in materials)"},
     {"body", "body index (position in bodies)"},
     {"id", "particle number"},
-    {"state", "material history variables, where the model has any"},
+    {"state", "material history variables, where the model has any (components: docs/output.md)"},
 }};
 
 [[nodiscard]] constexpr bool is_particle_field(std::string_view name) {

@@ -4,6 +4,7 @@
 // `state_size` and takes its state (stress<D>(F, q, state), energy_density<D>(F, state)).
 #pragma once
 
+#include <string>
 #include <variant>
 #include <vector>
 
@@ -23,6 +24,10 @@ Material make_material(const MaterialSpec& spec);
 
 /// History values per particle a model needs (0 for the elastic models).
 int state_size(const Material& m);
+
+/// The names of those values (the model's `state_names`, else state0, state1, ...): the
+/// component names of the .vtu `state` array.
+std::vector<std::string> state_names(const Material& m);
 
 template <int D>
 double wave_speed(const Material& m) {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "matpoint/core/types.hpp"
@@ -27,6 +28,7 @@ struct MieGruneisen {
 
   /// History per particle: specific internal energy e and eta = 1 - J of the last update.
   static constexpr int state_size = 2;
+  static constexpr std::array<const char*, 2> state_names{"e", "eta"};  // .vtu `state` components
 
   /// The reference part p_H (1 - Gamma0 eta / 2) of the pressure.
   [[nodiscard]] double reference_pressure(double eta) const {
