@@ -51,7 +51,7 @@ SECTIONS = {"read_material": "materials[]", "read_shape": "bodies[].shape",
             "read_moving_wall": "boundary_conditions[]", "read_condition": "boundary_conditions[]",
             "read_region": "boundary_conditions[]", "read_normal": "boundary_conditions[]",
             "read_solver": "solver", "read_mapping": "solver", "read_fmpm": "solver.fmpm",
-            "read_contact": "contact", "read_contact_law": "contact"}
+            "read_contact": "contact", "read_contact_law": "contact", "read_checks": "checks[]"}
 
 
 def keys_reading(source, table):

@@ -64,7 +64,7 @@ def run_spec(matpoint, spec, threads=1, out=None):
         path = os.path.join(folder, "input.json")
         with open(path, "w") as f:
             json.dump(spec, f, indent=1)
-        proc = subprocess.run([matpoint, "run", path, "--out", folder, "--quiet", "--threads", str(threads)],
+        proc = subprocess.run([matpoint, "run", path, "--out", folder, "--quiet", "--overwrite", "--threads", str(threads)],
                               capture_output=True, text=True)
         return _read(folder, proc, keep=out is not None)
 

@@ -3,8 +3,9 @@
 
 Writes DIR/plots/energy.png (energies and the relative energy-balance drift), DIR/plots/momentum.png,
 DIR/plots/probes.png when the input has output.probes (displacement, velocity and stress of each
-probed particle) and, for 2-D runs, DIR/plots/final_state.png (the last particles_NNNNNN.vtu
-coloured by speed).
+probed particle: one colour per probe, one line style per component) and, for 2-D and 3-D runs,
+DIR/plots/final_state.png (the last particles_NNNNNN.vtu coloured by speed; in 3-D its x-y and
+x-z projections). Axes carry the units of the input's optional `units` block.
 Each image is saved under a temporary name and renamed, so a plot is either whole or absent.
 Run by `matpoint run` at the end of a run and by `matpoint plot DIR`; needs python3-matplotlib
 (and python3-meshio for final_state.png, skipped without it). MATPOINT_PLOT_DPI sets the
@@ -27,6 +28,30 @@ except ImportError as missing:
              f"or run scripts/setup.sh; {sys.executable} is the interpreter in use)")
 
 
+def axis_label(quantity, units):
+    """'energy [J]': the quantity with the unit the input's optional `units` block names for it
+    (docs/input.md#units); derived units are built from length, time and mass; no unit, no brackets."""
+    length, time, mass = units.get("length"), units.get("time"), units.get("mass")
+    derived = {
+        "time": time,
+        "length": length,
+        "displacement": length,
+        "velocity": f"{length}/{time}" if length and time else None,
+        "energy": units.get("energy") or (f"{mass}·{length}²/{time}²" if mass and length and time else None),
+        "linear momentum": f"{mass}·{length}/{time}" if mass and length and time else None,
+        "stress": units.get("stress") or (f"{mass}/({length}·{time}²)" if mass and length and time else None),
+    }
+    unit = derived.get(quantity.split(" ")[-1] if quantity.startswith("Cauchy") else quantity)
+    return f"{quantity} [{unit}]" if unit else quantity
+
+
+def short_title(text, width=70):
+    """A title that fits the figure: wrapped at `width` characters, at most two lines."""
+    import textwrap
+    lines = textwrap.wrap(text, width) or [""]
+    return "\n".join(lines[:2]) + ("..." if len(lines) > 2 else "")
+
+
 def read_history(path):
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
@@ -45,7 +70,7 @@ def save(fig, plots, name):
     os.replace(temporary, final)
 
 
-def plot_energy(h, title, plots):
+def plot_energy(h, title, plots, units):
     t = h["time"]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 7), sharex=True, gridspec_kw={"height_ratios": [2, 1]})
     top.plot(t, h["kinetic_energy"], label="kinetic")
@@ -54,29 +79,36 @@ def plot_energy(h, title, plots):
     if np.any(h.get("external_work", np.zeros(1)) != 0):
         top.plot(t, h["external_work"], "--", label="external work")
         top.plot(t, h["energy_balance"], ":", label="total - external work")
-    top.set_ylabel("energy")
-    top.set_title(title or "energy")
+    top.set_ylabel(axis_label("energy", units))
+    top.set_title(short_title(title) or "energy")
     top.legend(loc="best")
     top.grid(alpha=0.3)
 
+    # Drift of B = K + U + D - W_ext over the energy scale seen so far, max(K(0) + U(0), max |W_ext|):
+    # the energy the problem was given or has received (the measure max_relative_energy_error uses
+    # the same scale over the whole run). A block dropped from rest has K(0) + U(0) = 0 and is
+    # measured against the work gravity has done.
     balance = h["energy_balance"]
-    reference = abs(balance[0]) if balance[0] != 0 else max(np.max(np.abs(balance)), 1e-300)
-    bottom.plot(t, (balance - balance[0]) / reference, color="tab:red")
-    bottom.set_ylabel("relative drift of\nenergy balance")
-    bottom.set_xlabel("time")
+    external = np.abs(h.get("external_work", np.zeros_like(balance)))
+    scale = np.maximum(h["total_energy"][0], np.maximum.accumulate(external))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        drift = np.where(scale > 0, (balance - balance[0]) / np.where(scale > 0, scale, 1.0), 0.0)
+    bottom.plot(t, 100 * drift, color="tab:red")
+    bottom.set_ylabel("energy balance drift\n(% of energy scale)")
+    bottom.set_xlabel(axis_label("time", units))
     bottom.grid(alpha=0.3)
     fig.tight_layout()
     save(fig, plots, "energy.png")
 
 
-def plot_momentum(h, title, plots):
+def plot_momentum(h, title, plots, units):
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for axis in "xyz":
         if f"momentum_{axis}" in h:
             ax.plot(h["time"], h[f"momentum_{axis}"], label=f"momentum {axis}")
-    ax.set_xlabel("time")
-    ax.set_ylabel("linear momentum")
-    ax.set_title(title or "momentum")
+    ax.set_xlabel(axis_label("time", units))
+    ax.set_ylabel(axis_label("linear momentum", units))
+    ax.set_title(short_title(title) or "momentum")
     ax.legend(loc="best")
     ax.grid(alpha=0.3)
     fig.tight_layout()
@@ -88,23 +120,32 @@ def probe_names(h):
     return [column[len("probe_"):-len("_J")] for column in h if column.startswith("probe_") and column.endswith("_J")]
 
 
-def plot_probes(h, title, plots):
+# One colour per probe, one line style per component: a 3-D probe has 3 displacement and 6 stress
+# components, more lines than a colour cycle has colours.
+LINE_STYLES = ["-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)), (0, (1, 3))]
+
+
+def plot_probes(h, title, plots, units):
     names = probe_names(h)
     if not names:
         return
     rows = [("displacement", ["ux", "uy", "uz"]), ("velocity", ["vx", "vy", "vz"]),
             ("Cauchy stress", ["sxx", "syy", "szz", "sxy", "sxz", "syz"])]
-    fig, axes = plt.subplots(len(rows), 1, figsize=(8, 9), sharex=True)
+    colours = plt.get_cmap("tab10" if len(names) <= 10 else "tab20").colors
+    fig, axes = plt.subplots(len(rows), 1, figsize=(10, 9), sharex=True)
     for ax, (label, components) in zip(axes, rows):
-        for name in names:
-            for component in components:
-                if f"probe_{name}_{component}" in h:
-                    ax.plot(h["time"], h[f"probe_{name}_{component}"], label=f"{name}: {component}")
-        ax.set_ylabel(label)
+        for p, name in enumerate(names):
+            present = [c for c in components if f"probe_{name}_{c}" in h]
+            for k, component in enumerate(present):
+                ax.plot(h["time"], h[f"probe_{name}_{component}"], color=colours[p % len(colours)],
+                        linestyle=LINE_STYLES[k % len(LINE_STYLES)], label=f"{name}: {component}")
+        ax.set_ylabel(axis_label(label, units))
         ax.grid(alpha=0.3)
-        ax.legend(loc="best", fontsize="small")
-    axes[0].set_title(title or "probes")
-    axes[-1].set_xlabel("time")
+        # Beside the axes, not over the data.
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small",
+                  ncol=1 + len(names) * len(components) // 13)
+    axes[0].set_title(short_title(title) or "probes")
+    axes[-1].set_xlabel(axis_label("time", units))
     fig.tight_layout()
     save(fig, plots, "probes.png")
 
@@ -119,7 +160,9 @@ def last_vtu(directory):
     return os.path.join(directory, datasets[-1].get("file")), datasets[-1].get("timestep")
 
 
-def plot_final_state(directory, title, plots):
+def plot_final_state(directory, title, plots, units):
+    """The last .vtu file's particles coloured by speed: the plane in 2-D; in 3-D the projections
+    on the x-y and x-z planes (each particle drawn where it projects, nearer ones on top)."""
     try:
         import meshio
     except ImportError:
@@ -131,22 +174,32 @@ def plot_final_state(directory, title, plots):
     mesh = meshio.read(vtu)
     x = mesh.points
     v = mesh.point_data.get("velocity")
+    speed = np.linalg.norm(v, axis=1) if v is not None else None
     plastic = mesh.point_data.get("plastic_strain")
-    fig, ax = plt.subplots(figsize=(7, 6))
-    if plastic is not None and np.max(plastic) > 0:  # plastic materials: colour by plastic strain
-        dots = ax.scatter(x[:, 0], x[:, 1], c=np.ravel(plastic), s=4, cmap="magma_r")
-        fig.colorbar(dots, ax=ax, label="equivalent plastic strain")
-    elif v is None:
-        ax.scatter(x[:, 0], x[:, 1], s=4)
-    else:
-        speed = np.linalg.norm(v, axis=1)
-        dots = ax.scatter(x[:, 0], x[:, 1], c=speed, s=4, cmap="viridis")
-        fig.colorbar(dots, ax=ax, label="velocity magnitude")
-    ax.set_aspect("equal")
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    ax.set_title(f"{title + chr(10) if title else ''}t = {float(time):.6g} ({os.path.basename(vtu)})")
-    fig.tight_layout()
+    plastic = np.ravel(plastic) if plastic is not None and np.max(plastic) > 0 else None  # plastic materials
+    three_d = np.any(x[:, 2] != 0)
+    planes = [(0, 1, 2), (0, 2, 1)] if three_d else [(0, 1, None)]
+    # Constrained layout keeps the title, the axis labels and the colour bars inside the figure.
+    fig, axes = plt.subplots(1, len(planes), figsize=(7 * len(planes), 6.5), squeeze=False, layout="constrained")
+    names = "xyz"
+    for ax, (a, b, depth) in zip(axes[0], planes):
+        order = np.argsort(x[:, depth]) if depth is not None else np.arange(len(x))
+        if depth == 1:
+            order = order[::-1]  # looking along +y: smaller y is nearer
+        field = plastic if plastic is not None else speed
+        colour = field[order] if field is not None else None
+        dots = ax.scatter(x[order, a], x[order, b], c=colour, s=4, cmap="magma_r" if plastic is not None else "viridis")
+        ax.set_aspect("equal")
+        ax.set_xlabel(axis_label(names[a], units) if not units.get("length") else f"{names[a]} [{units['length']}]")
+        ax.set_ylabel(axis_label(names[b], units) if not units.get("length") else f"{names[b]} [{units['length']}]")
+        if three_d:
+            ax.set_title(f"projection on the {names[a]}-{names[b]} plane", fontsize="medium")
+        if plastic is not None:
+            fig.colorbar(dots, ax=ax, label="equivalent plastic strain")
+        elif speed is not None:
+            fig.colorbar(dots, ax=ax, label=axis_label("velocity", units).replace("velocity", "speed"))
+    when = f"t = {float(time):.6g} ({os.path.basename(vtu)})"
+    fig.suptitle(f"{short_title(title)}\n{when}" if title else when)
     save(fig, plots, "final_state.png")
 
 
@@ -165,14 +218,15 @@ def main(argv):
         with open(summary_file) as f:
             summary = json.load(f)
     title = summary.get("title", "")
+    units = summary.get("input", {}).get("units", {}) if isinstance(summary.get("input"), dict) else {}
     h = read_history(history_file)
     plots = os.path.join(directory, "plots")
     os.makedirs(plots, exist_ok=True)
-    plot_energy(h, title, plots)
-    plot_momentum(h, title, plots)
-    plot_probes(h, title, plots)
-    if "momentum_y" in h and "momentum_z" not in h:
-        plot_final_state(directory, title, plots)
+    plot_energy(h, title, plots, units)
+    plot_momentum(h, title, plots, units)
+    plot_probes(h, title, plots, units)
+    if "momentum_y" in h:  # 2-D and 3-D
+        plot_final_state(directory, title, plots, units)
     return 0
 
 

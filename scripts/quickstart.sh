@@ -10,7 +10,7 @@ out=out/two-disks
 root=$(pwd)
 echo "quickstart: running examples/two-disks"
 status=0
-build/matpoint run examples/two-disks/input.json --out "$out" || status=$?
+build/matpoint run examples/two-disks/input.json --out "$out" --overwrite || status=$?
 if ((status != 0)); then
   echo "quickstart: the run failed with exit code $status" >&2
   exit "$status"

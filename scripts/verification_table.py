@@ -8,7 +8,15 @@ docs/verification.md between the markers
     <!-- BEGIN GENERATED: benchmark table (scripts/verification_table.py) -->
     <!-- END GENERATED -->
 
-with one row per check: benchmark, check, expected, tolerance, measured, status, source. Runs go to
+with one row per check: benchmark, check, kind, expected, tolerance, measured, status, source, and
+the count of each kind:
+  verification  the reference is independent of the code (analytic, a paper's value, a converged
+                finer run named in the source); the built-in `matpoint verify` checks, the Courant
+                bounds of `matpoint dispersion` (Gong 2015 (7.29), extraction T16) and the measured
+                Courant limits of the real 1-D loop (`matpoint stability-scan`, extraction S1);
+  regression    a value from an earlier run of this code, kept beside an independent check;
+  guard         a sanity bound that catches only gross failure (an inverted particle).
+An example check's kind is its input's `kind` (default "verification"). Runs go to
 out/verification/. Exit 0 when every check passes, 1 otherwise (the table is written either way).
 
 --figures also redraws each example's plots at low resolution into examples/NAME/figures/
@@ -29,6 +37,18 @@ END = "<!-- END GENERATED -->"
 def strip_comments(text):
     """The input format allows // comments on their own lines; enough to find the checks key."""
     return "\n".join(line for line in text.splitlines() if not line.lstrip().startswith("//"))
+
+
+KINDS = ("verification", "regression", "guard")
+
+
+def input_check_kinds(path):
+    """{check name: kind} of an input file (the summary does not carry the kind)."""
+    try:
+        spec = json.loads(strip_comments(open(path).read()))
+    except ValueError:
+        return {}
+    return {c.get("name"): c.get("kind", "verification") for c in spec.get("checks", [])}
 
 
 def examples_with_checks():
@@ -98,16 +118,18 @@ def show_in_readme(readme, plots):
 def run_example(matpoint, name, file, path, figures=False):
     label = name if file == "input.json" else f"{name}/{file}"
     out = os.path.join(ROOT, "out", "verification", label.replace("/", "-").removesuffix(".json"))
-    result = subprocess.run([matpoint, "run", path, "--out", out, "--quiet"], capture_output=True, text=True)
+    result = subprocess.run([matpoint, "run", path, "--out", out, "--quiet", "--overwrite"], capture_output=True, text=True)
     summary_file = os.path.join(out, "summary.json")
     if result.returncode != 0 or not os.path.exists(summary_file):
-        return [(label, "run", "exit 0", "", f"exit {result.returncode}", "FAIL", result.stderr.strip()[-200:])]
+        return [(label, "run", "verification", "exit 0", "", f"exit {result.returncode}", "FAIL",
+                 result.stderr.strip()[-200:])]
     if figures and file == "input.json":
         save_figures(name, out)
+    kinds = input_check_kinds(path)
     rows = []
     for c in json.load(open(summary_file)).get("checks", []):
-        rows.append((f"examples/{label}", c["name"], fmt(c["expected"]), fmt(c["tolerance"]), fmt(c["measured"]),
-                     "pass" if c["pass"] else "FAIL", c.get("source", "")))
+        rows.append((f"examples/{label}", c["name"], kinds.get(c["name"], "verification"), fmt(c["expected"]),
+                     fmt(c["tolerance"]), fmt(c["measured"]), "pass" if c["pass"] else "FAIL", c.get("source", "")))
     return rows
 
 
@@ -117,21 +139,86 @@ def run_verify(matpoint):
     try:
         checks = json.loads(result.stdout)
     except ValueError:
-        return [("matpoint verify", "run", "exit 0", "", f"exit {result.returncode}", "FAIL", result.stderr[-200:])]
+        return [("matpoint verify", "run", "verification", "exit 0", "", f"exit {result.returncode}", "FAIL",
+                 result.stderr[-200:])]
     rows = []
     for c in checks:
         expected = f"{c.get('relation', '')} {fmt(c['expected'])}".strip()
-        rows.append((f"verify {c['name']}", c.get("method", ""), expected, fmt(c.get("tolerance", "")),
-                     fmt(c["measured"]), "pass" if c["pass"] else "FAIL", c.get("source", "")))
+        rows.append((f"verify {c['name']}", c.get("method", ""), c.get("kind", "verification"), expected,
+                     fmt(c.get("tolerance", "")), fmt(c["measured"]), "pass" if c["pass"] else "FAIL",
+                     c.get("source", "")))
+    return rows
+
+
+# Gong 2015 (7.29) with the square restored: the tight Courant bounds of the linear analysis for
+# N_p^e = 1..4 (extraction test T16, 1e-4).
+DISPERSION_BOUNDS = {1: 1.0, 2: 1.29904, 3: 1.34479, 4: 1.36035}
+
+
+def run_dispersion(matpoint):
+    out = os.path.join(ROOT, "out", "verification", "dispersion")
+    result = subprocess.run([matpoint, "dispersion", "--json", "--no-plots", "--out", out,
+                             "--particles-per-cell", *map(str, DISPERSION_BOUNDS)], capture_output=True, text=True)
+    try:
+        bounds = {int(b["particles_per_cell"]): b for b in json.loads(result.stdout)["bounds"]}
+    except (ValueError, KeyError, TypeError):
+        return [("matpoint dispersion", "run", "verification", "exit 0", "", f"exit {result.returncode}", "FAIL",
+                 result.stderr[-200:])]
+    rows = []
+    for n, expected in DISPERSION_BOUNDS.items():
+        measured = bounds.get(n, {}).get("tight", float("nan"))
+        rows.append((f"dispersion, {n} particle(s) per cell", "tight Courant bound of the linear analysis",
+                     "verification", fmt(expected), "0.0001", fmt(measured),
+                     "pass" if abs(measured - expected) <= 1e-4 else "FAIL",
+                     "Gong 2015 eq. (7.29) with the square (docs/theory/stability.md); extraction T16"))
+    return rows
+
+
+# The real 1-D loop's Courant limit (examples/gong-stability-1d): the extraction's independent numpy
+# reproduction (check S1, its §6.5) and, for one particle per cell, the FLIP 2h mode's 1/sqrt(2).
+STABILITY_LIMITS = {1: (0.70711, "analytic: the FLIP 2h mode, sigma <- (1 - 4 CFL^2) sigma (docs/theory/stability.md)"),
+                    2: (0.757, "the extraction's independent reproduction (Gong 2015 extraction §6.5, check S1)"),
+                    4: (0.771, "the extraction's independent reproduction (Gong 2015 extraction §6.5, check S1)")}
+SCAN_TOLERANCE = 0.003  # half-width of the bisection bracket
+
+
+def run_stability(matpoint):
+    rows = []
+    path = os.path.join(ROOT, "examples", "gong-stability-1d", "input.json")
+    for n, (expected, source) in STABILITY_LIMITS.items():
+        result = subprocess.run([matpoint, "stability-scan", path, "--lo", "0.6", "--hi", "1.0", "--tolerance",
+                                 str(SCAN_TOLERANCE), "--set", f"bodies.0.particles_per_cell={n}", "--json"],
+                                capture_output=True, text=True)
+        try:
+            measured = float(json.loads(result.stdout)["limit"])
+        except (ValueError, KeyError, TypeError):
+            measured = float("nan")
+        # the bracket's half-width plus the reproduction's last printed digit
+        tolerance = SCAN_TOLERANCE + 0.002
+        rows.append((f"stability-scan examples/gong-stability-1d, {n} particle(s) per cell",
+                     "largest stable Courant number, FLIP, USL, linear basis", "verification", fmt(expected),
+                     fmt(tolerance), fmt(measured), "pass" if abs(measured - expected) <= tolerance else "FAIL", source))
     return rows
 
 
 def table(rows):
-    lines = ["| benchmark | check | expected | tolerance | measured | status | source |",
-             "|---|---|---|---|---|---|---|"]
-    for row in rows:
+    lines = ["| benchmark | check | kind | expected | tolerance | measured | status | source |",
+             "|---|---|---|---|---|---|---|---|"]
+    for row in sorted(rows, key=lambda r: KINDS.index(r[2]) if r[2] in KINDS else len(KINDS)):
         lines.append("| " + " | ".join(str(cell).replace("|", "/").replace("\n", " ") for cell in row) + " |")
     return "\n".join(lines)
+
+
+def counts(rows):
+    """'40 of 40 verification checks pass; 4 of 4 regression values hold; 5 of 5 guards hold.'"""
+    words = {"verification": "verification checks (independent references) pass",
+             "regression": "regression values (earlier runs of this code, not references) hold",
+             "guard": "guards (gross-failure bounds, not verification) hold"}
+    parts = []
+    for kind in KINDS:
+        of_kind = [r for r in rows if r[2] == kind]
+        parts.append(f"{sum(r[6] == 'pass' for r in of_kind)} of {len(of_kind)} {words[kind]}")
+    return "; ".join(parts) + "."
 
 
 def main():
@@ -148,12 +235,15 @@ def main():
         rows += run_example(matpoint, name, file, path, args.figures)
     print("running matpoint verify", file=sys.stderr)
     rows += run_verify(matpoint)
+    print("running matpoint dispersion and stability-scan", file=sys.stderr)
+    rows += run_dispersion(matpoint)
+    rows += run_stability(matpoint)
 
     doc_path = os.path.join(ROOT, "docs", "verification.md")
     doc = open(doc_path).read()
-    passed = sum(r[5] == "pass" for r in rows)
-    block = (f"{BEGIN}\n{passed} of {len(rows)} checks pass. Regenerate with `scripts/verification_table.py` "
-             f"(runs every example with checks and `matpoint verify`).\n\n{table(rows)}\n{END}")
+    passed = sum(r[6] == "pass" for r in rows)
+    block = (f"{BEGIN}\n{counts(rows)} Regenerate with `scripts/verification_table.py` (runs every example with "
+             f"checks, `matpoint verify`, `matpoint dispersion` and `matpoint stability-scan`).\n\n{table(rows)}\n{END}")
     if BEGIN in doc and END in doc:
         doc = doc[:doc.index(BEGIN)] + block + doc[doc.index(END) + len(END):]
     else:

@@ -14,6 +14,7 @@
 
 #include "matpoint/analysis/dispersion.hpp"
 #include "matpoint/core/errors.hpp"
+#include "matpoint/core/subprocess.hpp"
 #include "matpoint/io/atomic_file.hpp"
 
 namespace matpoint {
@@ -68,14 +69,11 @@ std::string bounds_csv(const std::vector<BoundRow>& bounds) {
   return out.str();
 }
 
-bool draw_dispersion_plots(const std::filesystem::path& out_dir, const std::filesystem::path& scripts_dir) {
-  const auto script = scripts_dir / "plot_dispersion.py";
-  if (scripts_dir.empty() || !std::filesystem::exists(script)) return false;
-  // Debian's interpreter first: python3-matplotlib installs there, whatever else is on PATH.
-  const char* python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string command =
-      std::string(python) + " '" + script.string() + "' '" + out_dir.string() + "' > /dev/null";
-  return std::system(command.c_str()) == 0;
+/// "" when plots/dispersion_*.png were drawn, else why not.
+std::string draw_dispersion_plots(const std::filesystem::path& out_dir,
+                                  const std::filesystem::path& scripts_dir) {
+  if (scripts_dir.empty()) return "no scripts folder";
+  return run_python_script(scripts_dir / "plot_dispersion.py", {out_dir.string()});
 }
 
 void print_text(const DispersionOptions& o, const std::vector<BoundRow>& bounds) {
@@ -144,11 +142,11 @@ int run_dispersion(const DispersionOptions& o, const std::string& scripts_dir) {
   std::vector<std::string> files{(out_dir / "dispersion.csv").string(),
                                  (out_dir / "dispersion_bounds.csv").string()};
   if (o.plots) {
-    if (draw_dispersion_plots(out_dir, scripts_dir)) {
+    if (const auto error = draw_dispersion_plots(out_dir, scripts_dir); error.empty()) {
       for (const char* name : {"amplitude", "phase_speed", "growth"})
         files.push_back((out_dir / "plots" / (std::string("dispersion_") + name + ".png")).string());
     } else {
-      std::fprintf(stderr, "warning: could not draw plots (needs python3-matplotlib)\n");
+      std::fprintf(stderr, "warning: could not draw plots: %s\n", error.c_str());
     }
   }
 

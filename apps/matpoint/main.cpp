@@ -1,23 +1,27 @@
 // The matpoint command line: run, check, plot (DESIGN.md "Interfaces").
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
+#include "cli_suggestions.hpp"
 #include "dispersion_command.hpp"
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/interrupt.hpp"
 #include "matpoint/core/version.hpp"
-#include "matpoint/explicit/courant_limits.hpp"
+#include "matpoint/explicit/setup_warnings.hpp"
 #include "matpoint/explicit/runner.hpp"
 #include "matpoint/explicit/simulation.hpp"
+#include "matpoint/io/checkpoint.hpp"
 #include "matpoint/io/input.hpp"
+#include "matpoint/io/output_folder.hpp"
+#include "run_estimate.hpp"
+#include "scripts_location.hpp"
 #include "stability_scan_command.hpp"
 #include "verify_command.hpp"
-
-#ifndef MATPOINT_SCRIPTS_DIR
-#define MATPOINT_SCRIPTS_DIR ""
-#endif
 
 namespace {
 
@@ -35,26 +39,88 @@ int command_check(const std::string& input) {
     check_setup(spec);  // what only the set-up finds: empty or overlapping bodies
     std::printf("%s: valid (%d-D, %zu material(s), %zu body(ies))\n", input.c_str(), spec.grid.dim,
                 spec.materials.size(), spec.bodies.size());
+    std::printf("estimate: %s\n", describe(estimate_run(spec)).c_str());
     return kExitOk;
   } catch (const InputError& error) {
     return report_input_error(error);
   }
 }
 
-int command_run(const std::string& input, const RunOptions& options) {
+int command_plot(const std::filesystem::path& dir, const std::filesystem::path& scripts_dir) {
+  if (scripts_dir.empty()) {
+    std::fprintf(stderr,
+                 "error: the plotting scripts were not found (set MATPOINT_SCRIPTS_DIR, or install "
+                 "matpoint with cmake --install)\n");
+    return kExitOther;
+  }
+  if (const auto error = draw_plots(dir, scripts_dir); !error.empty()) {
+    std::fprintf(stderr, "error: could not draw plots: %s\n", error.c_str());
+    return kExitOther;
+  }
+  return kExitOk;
+}
+
+/// A path as a POSIX shell reads it back: quoted when it holds anything but plain characters.
+std::string shell_word(const std::string& text) {
+  const bool plain = !text.empty() && text.find_first_not_of(
+                                          "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                          "0123456789-_./,:=+@%") == std::string::npos;
+  if (plain) return text;
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+/// A fresh run's folder must not hold another run's files: ParaView's file series and the plots
+/// would mix two runs. With --overwrite those files (only matpoint's own) are deleted first.
+bool prepare_output_folder(const std::filesystem::path& out, bool overwrite) {
+  const auto files = run_files_in(out);
+  if (files.empty()) return true;
+  if (!overwrite) {
+    std::fprintf(stderr,
+                 "error: %s already holds the outputs of another run (%s); choose another --out, or add "
+                 "--overwrite to delete those files first (other files in it are kept); nothing was run\n",
+                 out.c_str(), describe_run_files(files).c_str());
+    return false;
+  }
+  const std::size_t removed = remove_run_files(out);
+  std::fprintf(stderr, "--overwrite: deleted %zu output file(s) of an earlier run from %s\n", removed,
+               out.c_str());
+  return true;
+}
+
+bool same_folder(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code ec;
+  return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
+}
+
+int command_run(const std::string& input, const RunOptions& options, bool overwrite) {
   Spec spec;
   try {
     spec = load_spec(input);
   } catch (const InputError& error) {
     return report_input_error(error);
   }
+  // A restart continues in its checkpoint's folder; any other folder is checked like a fresh run's.
+  const bool continues_in_place =
+      !options.restart.empty() && same_folder(options.out_dir, options.restart.parent_path());
+  if (!continues_in_place && !prepare_output_folder(options.out_dir, overwrite)) return kExitBadInput;
   if (const auto warning = courant_warning(spec.solver); !warning.empty())
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  // The estimate before the wait: always when it is long, otherwise unless --quiet.
+  if (const RunEstimate estimate = estimate_run(spec); options.progress || estimate.seconds > 600)
+    std::fprintf(stderr, "estimate: %s\n", describe(estimate).c_str());
+  for (const auto& warning : setup_warnings(spec)) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   try {
     install_interrupt_handlers();  // SIGINT / SIGTERM: finish the step, checkpoint, exit 128 + signal
     const RunResult result = run_explicit(spec, options);
     if (result.exit_code > 128) {
-      std::fprintf(stderr, "%s\n", result.message.c_str());
+      const std::string checkpoint = result.summary.value("checkpoint", nlohmann::json()).is_string()
+                                         ? result.summary["checkpoint"].get<std::string>()
+                                         : (options.out_dir / kCheckpointFile).string();
+      std::fprintf(stderr, "%s\nthe whole command: matpoint run %s --restart %s --out %s\n",
+                   result.message.c_str(), shell_word(input).c_str(), shell_word(checkpoint).c_str(),
+                   shell_word(options.out_dir.string()).c_str());
       return result.exit_code;
     }
     if (result.exit_code != kExitOk) {
@@ -78,23 +144,65 @@ int command_run(const std::string& input, const RunOptions& options) {
 
 }  // namespace
 
+/// --threads: a whole number from 0 (all cores) to 4096, with a short message otherwise.
+const CLI::Validator kThreadCount(
+    [](std::string& text) -> std::string {
+      int n = -1;
+      std::size_t used = 0;
+      try {
+        n = std::stoi(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != text.size() || n < 0 || n > 4096)
+        return "got '" + text.substr(0, 40) + "', expected a whole number from 0 (all cores) to 4096";
+      return "";
+    },
+    "INT in [0, 4096]");
+
+/// OpenMP threads that wait at a barrier sleep instead of spinning (docs/user_guide.md "Threads"):
+/// on a machine whose cores are busy with other work, spinning threads take the cores from the
+/// ones with work, and a run on 2 threads became several times slower than on 1. libgomp reads
+/// OMP_WAIT_POLICY once, when the program is loaded, before main: so when the user has not set
+/// it, the program runs itself again with OMP_WAIT_POLICY=passive (a few milliseconds).
+void use_passive_wait_policy(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;  // the user's choice, or already done
+  if (setenv("OMP_WAIT_POLICY", "passive", 0) != 0) return;
+  execv("/proc/self/exe", argv);  // returns only on failure: then run on with the default policy
+}
+
 int main(int argc, char** argv) {
+  use_passive_wait_policy(argv);
   CLI::App app{"matpoint: material point method simulations"};
   app.set_version_flag("--version", std::string("matpoint ") + kVersion);
   app.require_subcommand(1);
+  app.footer(
+      "'matpoint help COMMAND' shows a command's options; docs/user_guide.md is the guide.\n"
+      "Exit codes: 0 ok, 1 other error, 2 bad input (nothing run), 3 numerical failure, 128 + signal "
+      "when interrupted.\n");
 
   std::string input;
   RunOptions options;
-  options.scripts_dir = MATPOINT_SCRIPTS_DIR;
+  options.scripts_dir = find_scripts_dir();
   bool quiet = false;
   std::string out_dir = "out";
   auto* run = app.add_subcommand("run", "run a simulation described by an input file");
   run->add_option("input", input, "input file (JSON, comments allowed)")->required();
-  run->add_option("--out", out_dir, "output folder (created if missing)")->capture_default_str();
-  run->add_option("--threads", options.threads, "OpenMP threads (0: default)")->check(CLI::NonNegativeNumber);
+  auto* out_option =
+      run->add_option("--out", out_dir,
+                      "output folder (created if missing; with --restart: the checkpoint's folder)")
+          ->capture_default_str();
+  bool overwrite = false;
+  run->add_flag("--overwrite", overwrite,
+                "delete the outputs of an earlier run in --out first (otherwise such a folder is refused)");
+  run->add_option("--threads", options.threads, "OpenMP threads (0: all cores)")->check(kThreadCount);
   run->add_flag("--quiet", quiet, "no progress output");
   std::string restart;
   run->add_option("--restart", restart, "continue from a checkpoint (e.g. OUT/checkpoint.h5) of this input");
+  run->footer(
+      "Example: matpoint run examples/two-disks/input.json --out two-disks\n"
+      "Writes particles_*.vtu, results.pvd (ParaView), history.csv, summary.json and plots/*.png into "
+      "--out; see docs/output.md.");
 
   auto* check =
       app.add_subcommand("check", "validate an input file; exit 0, or print every problem and exit 2");
@@ -111,8 +219,12 @@ int main(int argc, char** argv) {
   VerifyCommand verify;
   verify.add_to(app, options.scripts_dir.string());
 
+  if (const auto handled = handle_command_word(app, argc, argv)) return *handled;
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ExtrasError&) {
+    std::fprintf(stderr, "%s\n", describe_extras(app).c_str());
+    return kExitBadInput;
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitBadInput;
   }
@@ -121,11 +233,15 @@ int main(int argc, char** argv) {
     if (*check) return command_check(input);
     if (stability_scan.chosen()) return stability_scan.run();
     if (verify.chosen()) return verify.run();
-    if (*plot) return draw_plots(plot_dir, options.scripts_dir) ? kExitOk : kExitOther;
+    if (*plot) return command_plot(plot_dir, options.scripts_dir);
     options.out_dir = out_dir;
     options.progress = !quiet;
     options.restart = restart;
-    return command_run(input, options);
+    if (!restart.empty() && out_option->count() == 0) {  // continue where the checkpoint is
+      options.out_dir = options.restart.parent_path();
+      if (options.out_dir.empty()) options.out_dir = ".";
+    }
+    return command_run(input, options, overwrite);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitOther;

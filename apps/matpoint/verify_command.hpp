@@ -21,6 +21,7 @@ class VerifyCommand {
   std::string shape_;
   std::string method_;  // mpm, impm, improved-cpdi
   double amplitude_ = 0;
+  std::string time_;  // "T" (one period) or "T/4"
   std::vector<int> cells_;
   int particles_per_cell_ = 2;
   std::string out_ = "out/verify";  // like `run`: results under out/, never loose in the current folder

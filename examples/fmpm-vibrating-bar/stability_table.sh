@@ -27,7 +27,7 @@ echo "|---|---|---|---|"
 for v in "${variants[@]}"; do
   IFS='|' read -r name paper args <<<"$v"
   # shellcheck disable=SC2086  # args are intentionally split into options
-  line=$("$matpoint" stability-scan "$input" --lo 0.05 --hi 1.0 --growth 10 --set "solver.shape=\"$shape\"" $args | tail -1 || true)
+  line=$("$matpoint" stability-scan "$input" --lo 0.05 --hi 1.0 --growth 10 --set "solver.basis=\"$shape\"" $args | tail -1 || true)
   if [[ $line =~ limit:\ ([0-9.]+) ]]; then
     limit=${BASH_REMATCH[1]}
     printf '| %s | %s | %s | %+.3f |\n' "$name" "$paper" "$limit" "$(echo "$limit - $paper" | bc -l)"

@@ -23,7 +23,7 @@ MEASURES = ("fitted_com_displacement_acceleration_x", "fitted_com_acceleration_x
 
 def run_face(matpoint, base, face, h, end_time, shape, threads):
     """(displacement-fit a, velocity-slope a, largest rise of the centre in m, summary)."""
-    spec = variant(base, solver={"end_time": end_time, "shape": shape},
+    spec = variant(base, solver={"end_time": end_time, "basis": shape},
                    output={"every_time": 0.005, "particles": False, "plots": False})
     spec["grid"]["cell_size"] = h
     spec["boundary_conditions"][0]["type"] = face

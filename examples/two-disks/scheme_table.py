@@ -25,7 +25,7 @@ SHAPES = ["bspline2", "linear"]
 
 
 def run_case(matpoint, base, shape, scheme, transfer_keys, end_time):
-    spec = variant(base, solver=dict({"scheme": scheme, "shape": shape, "end_time": end_time}, **transfer_keys),
+    spec = variant(base, solver=dict({"scheme": scheme, "basis": shape, "end_time": end_time}, **transfer_keys),
                    drop_solver=("transfer", "position_alpha", "flip_fraction"),
                    output={"every_time": 0.05, "particles": False, "plots": False})
     spec["checks"] = []

@@ -10,7 +10,7 @@ restart_input() {
               "velocity": [0.1, 0.1]},
              {"material": "m", "shape": {"type": "disk", "center": [0.75, 0.75], "radius": 0.2},
               "velocity": [-0.1, -0.1]}],
-  "solver": {"scheme": "musl", "shape": "bspline2", "dt": 0.001, "end_time": 3.0},
+  "solver": {"scheme": "musl", "basis": "bspline2", "dt": 0.001, "end_time": 3.0},
   "output": {"every_steps": 100, "plots": false, "checkpoint": {"every_steps": 100},
              "probes": [{"name": "centre", "position": [0.25, 0.25]}]} }
 JSON

@@ -41,7 +41,7 @@ std::string input_text(int dim, const std::string& shape, const std::string& tra
                 "velocity_sine": {"amplitude": )" +
          v + R"(, "wave_vector": )" + v + R"(}}],
     "solver": {"scheme": "usavg", "transfer": )" +
-         transfer + R"(, "shape": ")" + shape + R"(", "courant": 0.3, "end_time": 0.1},
+         transfer + R"(, "basis": ")" + shape + R"(", "courant": 0.3, "end_time": 0.1},
     "output": {"every_steps": 5, "plots": false, "checkpoint": {"every_steps": 7}}})";
 }
 

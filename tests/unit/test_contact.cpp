@@ -123,7 +123,7 @@ TEST(StickContact, MuslFlipReproducesTheSingleFieldRun) {
 TEST(StickContact, FmpmNetReproducesTheSingleFieldRunStepByStep) {
   for (int k : {2, 4, 8}) {
     const std::string solver = R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": )" +
-                               std::to_string(k) + R"( }, "shape": "cpdi1", "courant": 0.2, "end_time": 1 })";
+                               std::to_string(k) + R"( }, "basis": "cpdi1", "courant": 0.2, "end_time": 1 })";
     EXPECT_LT(
         worst_grid_velocity_difference<Cpdi>(solver, R"({ "law": "stick", "fmpm_method": "net" })", kSteps),
         1e-10)
@@ -133,7 +133,7 @@ TEST(StickContact, FmpmNetReproducesTheSingleFieldRunStepByStep) {
 
 TEST(StickContact, FmpmEvolvingAlsoReproducesTheSingleFieldRun) {
   const std::string solver =
-      R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": 4 }, "shape": "cpdi1", "courant": 0.2, "end_time": 1 })";
+      R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": 4 }, "basis": "cpdi1", "courant": 0.2, "end_time": 1 })";
   EXPECT_LT(worst_grid_velocity_difference<Cpdi>(solver, R"({ "law": "stick", "fmpm_method": "evolving" })",
                                                  kSteps),
             1e-10);
@@ -205,7 +205,7 @@ TEST(ContactInput, NamesThePathOfEachMistake) {
   EXPECT_EQ(contact_issue_paths(R"({ "pairs": [ { "between": ["a", "a"] } ] })"),
             Paths{"contact.pairs[0].between"});
   EXPECT_EQ(contact_issue_paths(R"({})", R"({ "transfer": "xpic", "end_time": 1 })"), Paths{"contact"});
-  EXPECT_EQ(contact_issue_paths(R"({})", R"({ "shape": "cpdi2", "end_time": 1 })"), Paths{"contact"});
+  EXPECT_EQ(contact_issue_paths(R"({})", R"({ "basis": "cpdi2", "end_time": 1 })"), Paths{"contact"});
   // one field: two bodies of one material grouped by material
   EXPECT_EQ(contact_issue_paths(R"({ "fields": "materials" })"), Paths{"contact"});
   EXPECT_TRUE(contact_issue_paths(R"({ "law": "coulomb", "friction": 0.3, "separation": 0.8 })").empty());

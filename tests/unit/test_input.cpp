@@ -1,11 +1,13 @@
 // Tests of the JSON input reader (src/matpoint/io/input.cpp, format in docs/input.md).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -77,13 +79,15 @@ TEST(InputReader, MinimalTwoDimensionalInputGetsDefaults) {
   EXPECT_EQ(solver.scheme, UpdateScheme::MUSL);
   EXPECT_EQ(solver.transfer, VelocityTransfer::FLIP);
   EXPECT_EQ(solver.position_alpha, 1.0);
-  EXPECT_EQ(solver.shape, ShapeKind::Linear);
+  EXPECT_EQ(solver.shape, ShapeKind::BSpline2);  // the user guide's recommended basis
   EXPECT_EQ(solver.deformation_update, DeformationUpdate::Exponential);
   EXPECT_FALSE(solver.dt.has_value());
   EXPECT_EQ(solver.courant, 0.5);
   EXPECT_EQ(solver.end_time, 1.0);
   EXPECT_EQ(solver.max_steps, 0);
-  EXPECT_EQ(solver.mass_tolerance, 1e-12);
+  EXPECT_EQ(solver.mass_tolerance, 0.0);  // every node a particle reaches is active (momentum exact)
+  ASSERT_TRUE(solver.max_energy_growth.has_value());
+  EXPECT_EQ(*solver.max_energy_growth, 1.0);
 
   EXPECT_EQ(spec.output.every_steps, 0);
   EXPECT_EQ(spec.output.every_time, 0.0);
@@ -92,6 +96,11 @@ TEST(InputReader, MinimalTwoDimensionalInputGetsDefaults) {
   EXPECT_TRUE(spec.output.fields.empty());
   EXPECT_TRUE(spec.checks.empty());
   EXPECT_EQ(spec.echo, minimal_input());
+
+  // IMPM's cell quadrature needs the bilinear basis (Gong 2015 §5.3): there the default is linear.
+  json impm = minimal_input();
+  impm["solver"]["mapping"] = "impm";
+  EXPECT_EQ(parse_spec(impm.dump()).solver.shape, ShapeKind::Linear);
 }
 
 TEST(InputReader, YoungsModulusAndPoissonRatioGiveLameConstants) {
@@ -140,6 +149,80 @@ TEST(InputReader, SyntaxErrorIsOneIssueWithItsLine) {
   EXPECT_EQ(issues[0].path, "(json)");
   EXPECT_NE(issues[0].value.find("line 3"), std::string::npos) << issues[0].value;
   EXPECT_EQ(issues[0].expected, "valid JSON (comments allowed)");
+}
+
+// Every piece of the input echoed in a message is cut at 200 characters (docs/input.md), so a
+// mistake inside a huge token gives a short message, not the token back.
+constexpr std::size_t kEchoLimit = 200;
+
+void expect_short_issues(const std::vector<InputIssue>& issues, std::size_t input_size) {
+  ASSERT_FALSE(issues.empty());
+  for (const auto& issue : issues) {
+    EXPECT_LE(issue.message().size(), 5 * kEchoLimit) << issue.message().substr(0, 1000);
+    EXPECT_LT(issue.message().size(), input_size / 100);
+  }
+}
+
+TEST(InputReader, ParseErrorInsideAHugeNumberIsShort) {
+  std::string text = minimal_input().dump();
+  const std::string end_time = R"("end_time":1.0)";
+  text.replace(text.find(end_time), end_time.size(), R"("end_time":1.)" + std::string(4'000'000, '7') + "x");
+  const auto issues = issues_of(text);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].path, "(json)");
+  EXPECT_NE(issues[0].value.find("line 1"), std::string::npos) << issues[0].value.substr(0, 1000);
+  expect_short_issues(issues, text.size());
+}
+
+TEST(InputReader, UnterminatedCommentIsShort) {
+  const std::string text = minimal_input().dump() + "\n/* " + std::string(4'000'000, 'c');
+  const auto issues = issues_of(text);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_NE(issues[0].value.find("comment"), std::string::npos) << issues[0].value.substr(0, 1000);
+  expect_short_issues(issues, text.size());
+}
+
+TEST(InputReader, HugeUnknownKeyAndValueAreCut) {
+  json input = minimal_input();
+  input["solver"][std::string(1'000'000, 'k')] = std::string(1'000'000, 'v');
+  input["title"] = std::vector<double>(200'000, 1.5);
+  const auto issues = issues_of(input);
+  ASSERT_EQ(issues.size(), 2u) << describe(issues).substr(0, 2000);
+  expect_short_issues(issues, 1'000'000);
+}
+
+// A key given in the wrong section is reported where it is, with where it belongs.
+TEST(InputReader, MisplacedKeySaysWhereItBelongs) {
+  json input = minimal_input();
+  input["gravity"] = {0, -9.81};
+  input["solver"]["every_steps"] = 10;
+  input["bodies"][0]["density"] = 1000;
+  input["solver"]["sceme"] = "usl";  // a typo, known nowhere: no hint
+  const auto issues = issues_of(input);
+  ASSERT_EQ(issues.size(), 4u) << describe(issues);
+  std::map<std::string, std::string> expected_of;
+  for (const auto& issue : issues) expected_of[issue.path] = issue.expected;
+  EXPECT_NE(expected_of["gravity"].find("gravity belongs under loads"), std::string::npos)
+      << describe(issues);
+  EXPECT_NE(expected_of["solver.every_steps"].find("every_steps belongs under output"), std::string::npos)
+      << describe(issues);
+  EXPECT_NE(expected_of["bodies[0].density"].find("density belongs under materials[]"), std::string::npos)
+      << describe(issues);
+  EXPECT_EQ(expected_of["solver.sceme"].find("belongs under"), std::string::npos) << describe(issues);
+}
+
+// A body outside the grid: which side and by how much.
+TEST(InputReader, BodyOutsideTheGridNamesTheSideAndTheOverhang) {
+  json input = minimal_input();
+  input["bodies"][0]["shape"] = {{"type", "box"}, {"min", {-0.25, 0.25}}, {"max", {0.75, 1.5}}};
+  const auto issues = issues_of(input);
+  ASSERT_EQ(issues.size(), 1u) << describe(issues);
+  EXPECT_EQ(issues[0].path, "bodies[0].shape");
+  EXPECT_NE(issues[0].expected.find("0.25 beyond the x- side (x = -0.25 < grid.min[0] = 0)"),
+            std::string::npos)
+      << describe(issues);
+  EXPECT_NE(issues[0].expected.find("0.5 beyond the y+ side (y = 1.5 > grid.max[1] = 1)"), std::string::npos)
+      << describe(issues);
 }
 
 TEST(InputReader, RepeatedKeyIsAnIssue) {
@@ -347,6 +430,35 @@ TEST(InputReader, ThreeDimensionalGridWithCellSizeVector) {
   EXPECT_EQ(spec.loads.gravity, (Triple{0, 0, -9.81}));
 }
 
+// The basis key was solver.shape (easily confused with bodies[].shape, the geometry): the old
+// spelling is refused with a message naming solver.basis.
+TEST(InputReader, OldBasisKeyIsRefusedNamingTheNewOne) {
+  json input = minimal_input();
+  input["solver"]["shape"] = "bspline2";
+  const auto issues = issues_of(input);
+  ASSERT_EQ(issues.size(), 1u) << describe(issues);
+  EXPECT_EQ(issues[0].path, "solver.shape");
+  EXPECT_NE(issues[0].expected.find("solver.basis"), std::string::npos) << describe(issues);
+  input["solver"].erase("shape");
+  input["solver"]["basis"] = "cpdi1";
+  EXPECT_EQ(parse_spec(input.dump()).solver.shape, ShapeKind::CPDI1);
+}
+
+// A 3-D ball is a "sphere" ("disk" stays accepted in 3-D); a "sphere" in 2-D is refused.
+TEST(InputReader, SphereIsTheThreeDimensionalBall) {
+  json input = minimal_input();
+  use_3d_grid(input);
+  input["bodies"][0]["shape"] = {{"type", "sphere"}, {"center", {0.5, 0.5, 0.5}}, {"radius", 0.25}};
+  const Spec spec = parse_spec(input.dump());
+  EXPECT_EQ(spec.bodies[0].shape, BodyShape::Disk);
+  EXPECT_EQ(spec.bodies[0].radius, 0.25);
+  json flat = minimal_input();
+  flat["bodies"][0]["shape"] = {{"type", "sphere"}, {"center", {0.5, 0.5}}, {"radius", 0.25}};
+  const auto issues = issues_of(flat);
+  ASSERT_EQ(issues.size(), 1u) << describe(issues);
+  EXPECT_EQ(issues[0].path, "bodies[0].shape.type");
+}
+
 TEST(InputReader, OneDimensionalBarWithIntervalBody) {
   const Spec spec = parse_spec(R"({
     "grid": {"dim": 1, "min": [0], "max": [25], "cell_size": [1]},
@@ -431,7 +543,7 @@ TEST(InputReader, BoundaryConditionsMapToVelocityConditions) {
 
 TEST(InputReader, SolverAndOutputOptions) {
   json input = minimal_input();
-  input["solver"] = json::parse(R"({"scheme": "musl", "transfer": "blend", "shape": "bspline2",
+  input["solver"] = json::parse(R"({"scheme": "musl", "transfer": "blend", "basis": "bspline2",
     "deformation_update": "linear", "dt": 1e-4, "end_time": 2, "max_steps": 1e6, "position_alpha": 0,
     "mass_tolerance": 1e-9})");
   input["output"] = json::parse(R"({"every_time": 0.1, "particles": false, "fields": ["stress", "id"]})");
@@ -473,6 +585,23 @@ TEST(InputReader, MissingFileIsAnIssueNamingTheFile) {
     ASSERT_EQ(e.issues().size(), 1u);
     EXPECT_EQ(e.issues()[0].path, file.string());
   }
+}
+
+// A named pipe is refused by its type before it is opened: opening one with no writer blocks.
+TEST(InputReader, NamedPipeIsRefusedWithoutWaiting) {
+  const std::filesystem::path fifo =
+      std::filesystem::temp_directory_path() / ("matpoint_test_fifo_" + std::to_string(::getpid()) + ".json");
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    (void)load_spec(fifo);  // the old reader blocked here forever
+    ADD_FAILURE() << "a named pipe was accepted";
+  } catch (const InputError& e) {
+    ASSERT_EQ(e.issues().size(), 1u);
+    EXPECT_EQ(e.issues()[0].path, fifo.string());
+    EXPECT_EQ(e.issues()[0].value, "a named pipe");
+  }
+  std::filesystem::remove(fifo);
 }
 
 TEST(InputReader, LoadsAFile) {

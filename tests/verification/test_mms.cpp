@@ -1,7 +1,11 @@
-// The manufactured solutions of Gong 2015 §4.5-4.7 (extraction §7.3, §7.4) and the acceptance
-// thresholds of the extraction's §10: each test names its expected value and source. The orders
-// are least-squares slopes of log(error) against log(h) over h = 1/8 .. 1/64 with 2 particles per
-// cell per direction, errors at T = 0.02 (one period) by particle quadrature (extraction A8).
+// The manufactured solutions of Gong 2015 §4.5-4.7 (extraction §7.3, §7.4). Each test names the
+// order the source claims; the pass rule is that order with the one margin kOrderMargin = 0.2
+// ("expected 2, pass >= 1.8"; "expected 1, pass 0.8 .. 1.2"). The orders are least-squares slopes
+// of log(error) against log(h) over h = 1/8 .. 1/64 with 2 particles per cell per direction,
+// errors at T = 0.02 (one period) by particle quadrature (extraction A8), Gong's walls (A24).
+// Particle velocities are reported but not asserted for linear MPM and IMPM: their order on
+// 1/8 .. 1/64 (1.64, the extraction's reproduction too) is below Gong's "second order", an open
+// difference in docs/verification.md.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -74,15 +78,67 @@ TEST(ManufacturedSolution, StepCountIsFiveTimesTheCells) {
   for (int n : {8, 16, 64}) EXPECT_EQ(run_mms(o, n).steps, 5L * n);
 }
 
-// T5 (Gong Fig. 4.7, "appears to be second order"): slope >= 1.8 in displacement, stress and
-// density (proto 2.02 / 2.01 / 2.01), >= 1.4 in particle velocity (proto 1.64). The threshold 1.8
-// leaves 0.2 for the pre-asymptotic first mesh of a second-order method.
+// T5 (Gong Fig. 4.7, "appears to be second order"): expected 2, slope >= 1.8 in displacement,
+// stress and density.
 TEST(MmsVerification, Linear1DSmallAmplitudeConvergesAtSecondOrder) {
   const auto runs = sweep(1, ShapeKind::Linear, 1e-4, {8, 16, 32, 64});
-  EXPECT_GE(order(runs, "displacement"), 1.8) << table(runs);
-  EXPECT_GE(order(runs, "stress"), 1.8) << table(runs);
-  EXPECT_GE(order(runs, "density"), 1.8) << table(runs);
-  EXPECT_GE(order(runs, "velocity"), 1.4) << table(runs);
+  EXPECT_GE(order(runs, "displacement"), 2.0 - kOrderMargin) << table(runs);
+  EXPECT_GE(order(runs, "stress"), 2.0 - kOrderMargin) << table(runs);
+  EXPECT_GE(order(runs, "density"), 2.0 - kOrderMargin) << table(runs);
+}
+
+// Gong ch. 8: IMPM raises MPM "from zeroth order"; Table 4.2: the mass-weighted (Shepard) mapping
+// is first order once particles are unevenly spaced. At G = 1e-4 the errors of linear MPM stall
+// below h = 1/128 at a level proportional to G^2 (a relative error O(G) that refinement does not
+// remove): the stress order over 1/256 .. 1/1024 is below 0.5 with finite errors.
+TEST(MmsVerification, Linear1DSmallAmplitudeStallsOnFineMeshes) {
+  const auto runs = sweep(1, ShapeKind::Linear, 1e-4, {256, 512, 1024});
+  EXPECT_LT(order(runs, "stress"), kNoConvergenceOrder) << table(runs);
+  EXPECT_GT(runs.back().stress, 0.5 * runs.front().stress) << table(runs);
+  const auto ten_times_smaller = sweep(1, ShapeKind::Linear, 1e-5, {1024});  // the floor scales as G^2
+  EXPECT_NEAR(ten_times_smaller[0].stress / runs.back().stress, 0.01, 0.002) << table(runs);
+}
+
+// Extraction §8 ("two traps", 1) and A9: at T/4 the exact strain is not zero and the particle
+// stress of linear elements is first order (cellwise-constant strain): expected 1, pass 0.8 .. 1.2,
+// displacement and velocity still expected 2.
+TEST(MmsVerification, Linear1DQuarterPeriodStressIsFirstOrder) {
+  MmsOptions o;
+  o.end_time = 0.005;
+  std::vector<MmsResult> runs;
+  for (int n : {8, 16, 32, 64}) runs.push_back(run_mms(o, n));
+  EXPECT_NEAR(order(runs, "stress"), 1.0, kOrderMargin) << table(runs);
+  EXPECT_GE(order(runs, "displacement"), 2.0 - kOrderMargin) << table(runs);
+  EXPECT_GE(order(runs, "velocity"), 2.0 - kOrderMargin) << table(runs);
+}
+
+// The pass rules of order_check: "does not converge" passes on a det F <= 0 stop or on finite
+// errors that do not fall, never on NaN errors or another guard's stop; a first-order claim
+// fails on a second-order result.
+TEST(MmsVerification, OrderChecksNeedTheSpecificFailure) {
+  VerificationCase c = make_case("mms-1d", ShapeKind::Linear, 0.1, false);
+  const OrderExpectation no_convergence{"stress", OrderClaim::NoConvergence, 0.0, "test"};
+  auto run = [](int cells, double stress, bool finished = true, bool inverted = false) {
+    MmsResult r;
+    r.cells = cells;
+    r.h = 1.0 / cells;
+    r.stress = stress;
+    r.finished = finished;
+    r.inverted = inverted;
+    return r;
+  };
+  const double nan = std::nan("");
+  EXPECT_TRUE(order_check(c, no_convergence, {run(8, 1e6), run(16, 1e6), run(32, 1.2e6)})->pass);
+  EXPECT_FALSE(order_check(c, no_convergence, {run(8, 1e6), run(16, 2.5e5), run(32, 6e4)})->pass);
+  EXPECT_FALSE(order_check(c, no_convergence, {run(8, nan), run(16, nan), run(32, nan)})->pass);
+  EXPECT_FALSE(order_check(c, no_convergence, {run(8, 1e6), run(16, 1e6), run(32, nan, false)})->pass);
+  EXPECT_TRUE(order_check(c, no_convergence, {run(8, 1e6), run(16, 1e6), run(32, nan, false, true)})->pass);
+  const OrderExpectation first{"stress", OrderClaim::Near, 1.0, "test"};
+  EXPECT_TRUE(order_check(c, first, {run(8, 8.0), run(16, 4.0), run(32, 2.0)})->pass);
+  EXPECT_FALSE(order_check(c, first, {run(8, 16.0), run(16, 4.0), run(32, 1.0)})->pass);
+  const OrderExpectation second{"stress", OrderClaim::AtLeast, 2.0, "test"};
+  EXPECT_FALSE(order_check(c, second, {run(8, 8.0), run(16, 4.0), run(32, 2.0)})->pass);
+  EXPECT_FALSE(order_check(c, second, {run(8, 16.0), run(16, 4.0), run(32, nan, false)})->pass);
 }
 
 // T6 (Gong Fig. 4.8, "does not converge"): stress slope < 0.5 and E(1/64) > 0.5 E(1/8)
@@ -94,57 +150,63 @@ TEST(MmsVerification, Linear1DLargeAmplitudeDoesNotConverge) {
   EXPECT_GT(runs.back().stress, 0.5 * runs.front().stress) << table(runs);
 }
 
-// Extraction A29 / §8: linear MPM at G = 0.1 with 2 ppc reaches det F <= 0 from h = 1/128 on
-// (proto: step 405 of 640). The run must stop cleanly with the guard's message (the command
-// line's exit 3), never crash or return NaN errors as if finished.
+// Extraction A29 / §8: linear MPM at G = 0.1 with 2 ppc reaches det F <= 0 from h = 1/128 on; the
+// extraction's independent numpy reproduction stops at step 405 of 640 (its §8). The run must stop
+// cleanly on the det F guard (the command line's exit 3), never crash or return NaN as if finished.
 TEST(MmsVerification, Linear1DLargeAmplitudeReportsDivergenceCleanly) {
   MmsOptions o;
   o.amplitude = 0.1;
   const auto r = run_mms(o, 128);
   EXPECT_FALSE(r.finished);
-  EXPECT_EQ(r.steps, 405);  // the extraction's proto: det F <= 0 at step 405 of 640
+  EXPECT_EQ(r.steps, 405);  // extraction §8's reproduction: det F <= 0 at step 405 of 640
+  EXPECT_TRUE(r.inverted);
   EXPECT_NE(r.message.find("det F"), std::string::npos) << r.message;
 }
 
 // T12 (Gong Fig. 6.1, CPDI on coarse meshes "appears second order for all the field variables"):
-// slope >= 1.7 in stress, density and displacement over h = 1/8 .. 1/64 (proto local 1.93-2.06).
-// Integrating the basis over the particle domain removes the cell-crossing error of T6.
+// expected 2, slope >= 1.8 in stress, density and displacement over h = 1/8 .. 1/64. Integrating
+// the basis over the particle domain removes the cell-crossing error of T6.
 TEST(MmsVerification, Cpdi1LargeAmplitudeConvergesOnCoarseMeshes) {
   const auto runs = sweep(1, ShapeKind::CPDI1, 0.1, {8, 16, 32, 64});
-  EXPECT_GE(order(runs, "displacement"), 1.7) << table(runs);
-  EXPECT_GE(order(runs, "stress"), 1.7) << table(runs);
-  EXPECT_GE(order(runs, "density"), 1.7) << table(runs);
+  EXPECT_GE(order(runs, "displacement"), 2.0 - kOrderMargin) << table(runs);
+  EXPECT_GE(order(runs, "stress"), 2.0 - kOrderMargin) << table(runs);
+  EXPECT_GE(order(runs, "density"), 2.0 - kOrderMargin) << table(runs);
 }
 
-// T9 (Gong Fig. 4.9): displacement slope >= 1.8; stress, density, velocity >= 1.0 ("between
-// order 1 and order 2"; proto 2.0 / 2.0 / 1.64). h = 1/8 .. 1/32 keeps the CI time short.
+// T9 (Gong Fig. 4.9): displacement expected 2. Stress and density: Gong writes "between order 1
+// and order 2"; at T = one period the exact strain vanishes and with it the O(h) strain error of
+// linear elements (extraction §8), so expected 2 as in 1-D (the difference is in
+// docs/verification.md). h = 1/8 .. 1/32 keeps the CI time short.
 TEST(MmsVerification, Linear2DSmallAmplitudeConverges) {
   const auto runs = sweep(2, ShapeKind::Linear, 1e-4, {8, 16, 32});
-  EXPECT_GE(order(runs, "displacement"), 1.8) << table(runs);
-  EXPECT_GE(order(runs, "stress"), 1.0) << table(runs);
-  EXPECT_GE(order(runs, "density"), 1.0) << table(runs);
-  EXPECT_GE(order(runs, "velocity"), 1.0) << table(runs);
+  EXPECT_GE(order(runs, "displacement"), 2.0 - kOrderMargin) << table(runs);
+  EXPECT_GE(order(runs, "stress"), 2.0 - kOrderMargin) << table(runs);
+  EXPECT_GE(order(runs, "density"), 2.0 - kOrderMargin) << table(runs);
 }
 
-// T10 (Gong Fig. 4.10, G = 0.05: "MPM does not converge"): stress slope < 0.5 (proto -0.14).
+// T10 (Gong Fig. 4.10, G = 0.05: "MPM does not converge"): stress slope < 0.5 and the finest
+// error above half the coarsest, all finite.
 TEST(MmsVerification, Linear2DLargeAmplitudeDoesNotConverge) {
   const auto runs = sweep(2, ShapeKind::Linear, 0.05, {8, 16, 32});
-  EXPECT_LT(order(runs, "stress"), 0.5) << table(runs);
+  EXPECT_LT(order(runs, "stress"), kNoConvergenceOrder) << table(runs);
+  EXPECT_GT(runs.back().stress, 0.5 * runs.front().stress) << table(runs);
 }
 
-// Issue 3 item 4, B-splines at G = 1e-4 (2 ppc): slope >= 1.8 in stress, density, displacement
-// and >= 1.2 in particle velocity (measured 2.01 / 2.01 / 2.01 / 1.61).
+// B-splines at G = 1e-4 (2 ppc): second order as Gong's Fig. 4.7 (small strain, no cell crossing,
+// an O(h^2) interpolant): expected 2, slope >= 1.8 in stress, density and displacement on
+// 1/8 .. 1/64, and in particle velocity past its pre-asymptotic meshes (1/64 .. 1/512).
 TEST(MmsVerification, BSplinesSmallAmplitudeConvergeAtSecondOrder) {
-  for (const auto shape : {ShapeKind::BSpline2, ShapeKind::BSpline3}) {  // measured 2.0 / 2.0 / 2.0 / 1.6, 1.5
+  for (const auto shape : {ShapeKind::BSpline2, ShapeKind::BSpline3}) {
     const auto runs = sweep(1, shape, 1e-4, {8, 16, 32, 64});
-    EXPECT_GE(order(runs, "displacement"), 1.8) << shape_name(shape) << "\n" << table(runs);
-    EXPECT_GE(order(runs, "stress"), 1.8) << shape_name(shape) << "\n" << table(runs);
-    EXPECT_GE(order(runs, "density"), 1.8) << shape_name(shape) << "\n" << table(runs);
-    EXPECT_GE(order(runs, "velocity"), 1.2) << shape_name(shape) << "\n" << table(runs);
+    EXPECT_GE(order(runs, "displacement"), 2.0 - kOrderMargin) << shape_name(shape) << "\n" << table(runs);
+    EXPECT_GE(order(runs, "stress"), 2.0 - kOrderMargin) << shape_name(shape) << "\n" << table(runs);
+    EXPECT_GE(order(runs, "density"), 2.0 - kOrderMargin) << shape_name(shape) << "\n" << table(runs);
   }
+  const auto fine = sweep(1, ShapeKind::BSpline2, 1e-4, {64, 128, 256, 512});
+  EXPECT_GE(order(fine, "velocity"), 2.0 - kOrderMargin) << table(fine);
 }
 
-// Issue 3 item 4, B-splines at G = 0.1: point quadrature stalls (Steffen, Kirby & Berzins 2008),
+// B-splines at G = 0.1: point quadrature stalls (Steffen, Kirby & Berzins 2008),
 // so no slope is asserted: finite results with F > 0 down to h = 1/1024, and the stress error
 // falls at least 3x from h = 1/8 to 1/32 (measured 4.2x).
 TEST(MmsVerification, BSplinesLargeAmplitudeStayFiniteAndFirstImprove) {
@@ -159,24 +221,27 @@ TEST(MmsVerification, BSplinesLargeAmplitudeStayFiniteAndFirstImprove) {
   }
 }
 
-// Issue 3 item 4: methods that integrate over the particle domain keep slope >= 1.7 at G = 0.1 on
-// h = 1/8 .. 1/64 (measured CPDI2 1.97, B2CPDI 1.96 in stress).
+// Methods that integrate over the particle domain: second order at G = 0.1 as CPDI in Gong's
+// Fig. 6.1 (expected 2, slope >= 1.8 on h = 1/8 .. 1/64).
 TEST(MmsVerification, DomainIntegratedBasesLargeAmplitudeConverge) {
   for (ShapeKind shape : {ShapeKind::CPDI2, ShapeKind::B2CPDI}) {
     const auto runs = sweep(1, shape, 0.1, {8, 16, 32, 64});
-    EXPECT_GE(order(runs, "displacement"), 1.7) << shape_name(shape) << "\n" << table(runs);
-    EXPECT_GE(order(runs, "stress"), 1.7) << shape_name(shape) << "\n" << table(runs);
-    EXPECT_GE(order(runs, "density"), 1.7) << shape_name(shape) << "\n" << table(runs);
+    EXPECT_GE(order(runs, "displacement"), 2.0 - kOrderMargin) << shape_name(shape) << "\n" << table(runs);
+    EXPECT_GE(order(runs, "stress"), 2.0 - kOrderMargin) << shape_name(shape) << "\n" << table(runs);
+    EXPECT_GE(order(runs, "density"), 2.0 - kOrderMargin) << shape_name(shape) << "\n" << table(runs);
   }
 }
 
-// T13 (Gong Fig. 6.2: on finer meshes "the convergence rate of CPDI drops"): stress slope <= 1.3
-// over h = 1/256 .. 1/2048 (proto local 1.07, 0.84, 0.67; measured the same, errors 770, 366,
-// 205, 129 Pa against the proto's 7.70e2, 3.66e2, 2.05e2, 1.29e2).
+// T13 (Gong Fig. 6.2: on finer meshes "the convergence rate of CPDI drops"; ch. 8: improved CPDI
+// raises CPDI "from first order to second order for fine meshes"): expected 1, slope 0.8 .. 1.2
+// over h = 1/256 .. 1/2048. The errors also match the extraction's independent reproduction (§8:
+// 7.70e2, 3.66e2, 2.05e2, 1.29e2 Pa) to 1 %.
 TEST(MmsVerification, Cpdi1LargeAmplitudeRateDropsOnFineMeshes) {
   const auto runs = sweep(1, ShapeKind::CPDI1, 0.1, {256, 512, 1024, 2048});
-  EXPECT_LE(order(runs, "stress"), 1.3) << table(runs);
-  EXPECT_GT(order(runs, "stress"), 0.3) << table(runs);  // still converging, not unstable yet
+  EXPECT_NEAR(order(runs, "stress"), 1.0, kOrderMargin) << table(runs);
+  const double reproduction[] = {7.70e2, 3.66e2, 2.05e2, 1.29e2};
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    EXPECT_NEAR(runs[k].stress, reproduction[k], 0.01 * reproduction[k]) << table(runs);
 }
 
 }  // namespace

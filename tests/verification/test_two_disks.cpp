@@ -1,6 +1,6 @@
-// examples/two-disks (Sulsky, Chen & Schreyer 1994): issue 2 acceptance 4. With no boundary
+// examples/two-disks (Sulsky, Chen & Schreyer 1994). With no boundary
 // touched, P2G/G2P conserve linear momentum exactly, so the bound is round-off (1e-10 relative).
-// The energy bounds are the issue's: FLIP with quadratic B-splines keeps the total energy within
+// The energy bounds were set before the runs: FLIP with quadratic B-splines keeps the total energy within
 // 5 % with USL and within 1 % with MUSL and USF at every output time to t = 3 (an independent
 // check found -3.0 %, -0.03 % and +0.5 %; we measure -2.7 %, -0.07 % and +0.08 %, see the example's
 // README).

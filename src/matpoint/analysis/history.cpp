@@ -19,7 +19,7 @@ std::string History::csv() const {
     for (int a = 0; a < dim; ++a) out << ",body" << b << "_com_" << axis[a];
   }
   for (int a = 0; a < dim; ++a) out << ",grid_momentum_difference_" << axis[a];
-  out << ",checkerboard_velocity,grid_rms_velocity,hourglass_energy";
+  out << ",checkerboard_velocity,grid_rms_velocity,hourglass_energy,dt";
   for (const auto& column : probe_columns) out << ',' << column;
   out << '\n' << std::setprecision(12);
   for (const auto& s : samples) {
@@ -35,7 +35,7 @@ std::string History::csv() const {
       for (int a = 0; a < dim; ++a) out << ',' << s.body_com_position[b][a];
     }
     for (int a = 0; a < dim; ++a) out << ',' << s.grid_momentum_difference[a];
-    out << ',' << s.checkerboard_velocity << ',' << s.grid_rms_velocity << ',' << s.hourglass_energy;
+    out << ',' << s.checkerboard_velocity << ',' << s.grid_rms_velocity << ',' << s.hourglass_energy << ',' << s.dt;
     for (std::size_t c = 0; c < probe_columns.size(); ++c)  // nan: a row from before the probe existed
       out << ',' << (c < s.probes.size() ? s.probes[c] : std::numeric_limits<double>::quiet_NaN());
     out << '\n';

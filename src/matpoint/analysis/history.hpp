@@ -11,6 +11,7 @@ namespace matpoint {
 struct HistorySample {
   double time = 0.0;
   long step = 0;
+  double dt = 0.0;  // the size of the step that reached this row (0 at the start)
   double kinetic_energy = 0.0, strain_energy = 0.0, external_work = 0.0;
   double friction_work = 0.0;  // energy dissipated by contact friction (docs/theory/contact.md)
   std::array<double, 3> momentum{}, external_impulse{};

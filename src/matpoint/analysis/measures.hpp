@@ -13,8 +13,9 @@ struct MeasureInfo {
 
 inline constexpr std::array<MeasureInfo, 18> kMeasures{{
     {"max_relative_energy_error",
-     "max over output times of |E(t) + D(t) - W_ext(t) - E(0)| / E(0), E = kinetic + strain energy, "
-     "D = friction work (contact)"},
+     "max over output times of |B(t) - B(0)| / E_s, B = K + U + D - W_ext (kinetic, strain energy, friction "
+     "work of contact, external work), E_s = max(K(0) + U(0), max |W_ext| over the run): the energy given or "
+     "received, so a problem starting at rest under gravity is measured against the work of gravity"},
     {"max_relative_momentum_error",
      "max over output times of |P(t) - P(0) - I_ext(t)| / sum_p m_p |V_p(0)|, I_ext the impulse of gravity "
      "and of the grid velocity conditions (contact with a rigid body is not counted in it)"},
@@ -30,8 +31,8 @@ inline constexpr std::array<MeasureInfo, 18> kMeasures{{
      "max K over the outputs in the last tenth of the run / K(0) - 1: for a periodic motion whose kinetic "
      "energy peaks in that window, the energy lost without the phase error of sampling at one time"},
     {"total_energy_change",
-     "(E(end) + D(end) - W_ext(end)) / E(0) - 1: the signed relative change of total energy (D = friction "
-     "work of contact, 0 without contact)"},
+     "(B(end) - B(0)) / E_s: the signed relative change of the energy balance B = K + U + D - W_ext, with "
+     "the scale E_s of max_relative_energy_error"},
     {"final_com_velocity_x", "x velocity of the centre of mass of all bodies at the last output"},
     {"final_com_velocity_y", "y velocity of the centre of mass of all bodies at the last output"},
     {"final_com_velocity_z", "z velocity of the centre of mass of all bodies at the last output"},

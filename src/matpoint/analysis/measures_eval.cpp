@@ -11,15 +11,32 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+/// B = K + U + D - W_ext: kinetic, strain, friction work, external work (an exact run keeps B(0)).
+double energy_balance(const HistorySample& s) {
+  return s.kinetic_energy + s.strain_energy + s.friction_work - s.external_work;
+}
+
+/// The energy scale of relative energy measures: the largest of the initial energy K(0) + U(0)
+/// and |W_ext| over the run, the energy the problem was given or has received. A problem that
+/// starts at rest under gravity has E(0) = 0 and is measured against the work gravity did.
+double energy_scale(const History& h) {
+  const auto& s0 = h.samples.front();
+  double scale = s0.kinetic_energy + s0.strain_energy;
+  for (const auto& s : h.samples) scale = std::max(scale, std::abs(s.external_work));
+  return scale;
+}
+
+/// A drift relative to the scale; a problem that never had or received energy drifts by 0.
+double relative_drift(double drift, double scale) {
+  if (scale > 0) return drift / scale;
+  return drift == 0.0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), drift);
+}
+
 double max_relative_energy_error(const History& h) {
   if (h.samples.empty()) return kNaN;
-  const auto& s0 = h.samples.front();
-  const double e0 = s0.kinetic_energy + s0.strain_energy;
+  const double b0 = energy_balance(h.samples.front()), scale = energy_scale(h);
   double worst = 0.0;
-  for (const auto& s : h.samples) {
-    const double drift = s.kinetic_energy + s.strain_energy + s.friction_work - s.external_work - e0;
-    worst = std::max(worst, std::abs(drift) / e0);
-  }
+  for (const auto& s : h.samples) worst = std::max(worst, std::abs(relative_drift(energy_balance(s) - b0, scale)));
   return worst;
 }
 
@@ -178,8 +195,7 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
     const auto& first = history.samples.front();
     const auto& last = history.samples.back();
     if (name == "kinetic_energy_change") return last.kinetic_energy / first.kinetic_energy - 1.0;
-    const double e0 = first.kinetic_energy + first.strain_energy;
-    return (last.kinetic_energy + last.strain_energy + last.friction_work - last.external_work) / e0 - 1.0;
+    return relative_drift(energy_balance(last) - energy_balance(first), energy_scale(history));
   }
   if (name == "mean_rms_velocity_change") {
     if (history.samples.size() < 2) return kNaN;

@@ -56,7 +56,8 @@ ScanRun classify_run(const nlohmann::json& input, const ScanOptions& options, do
   output["plots"] = false;
   if (!output.contains("every_steps") && !output.contains("every_time")) output["every_steps"] = 10;
   j["output"] = output;
-  const Spec spec = parse_spec(j.dump());
+  Spec spec = parse_spec(j.dump());
+  spec.output.exact_times = false;  // the scanned Courant number must be every step's (none shortened)
 
   RunOptions run;
   run.progress = false;

@@ -1,8 +1,10 @@
 #include "matpoint/analysis/verification.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "matpoint/core/errors.hpp"
@@ -219,6 +221,10 @@ MmsResult run_with(const MmsOptions& o, int cells) {
     r.finished = true;
   } catch (const NumericalFailure& failure) {
     r.message = failure.what();
+    for (std::size_t p = 0; p < sim.particles.size(); ++p) {
+      const double J = sim.particles.F[p].determinant();
+      r.inverted = r.inverted || (std::isfinite(J) && J <= 0.0);
+    }
   }
   r.steps = sim.step;
   const double t = sim.time, t_half = t - 0.5 * r.dt;
@@ -310,7 +316,7 @@ double mms_quantity(const MmsResult& r, const std::string& quantity) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Expectations (extraction §10, issue 3) and the suite.
+// Expectations (Gong 2015 claims, extraction §8 and §10) and the suite.
 
 namespace {
 
@@ -333,6 +339,18 @@ std::string method_name(ShapeKind shape, Mapping mapping) {
   return shape_name(shape);
 }
 
+namespace {
+
+using enum OrderClaim;
+
+/// Second order in displacement, stress and density: the claim of every converging method of Gong's
+/// figures (extraction §7.3 table) and of the analysis at T = one period (extraction §8, trap 1).
+void second_order_fields(std::vector<OrderExpectation>& e, const std::string& source) {
+  for (const char* q : {"displacement", "stress", "density"}) e.push_back({q, AtLeast, 2.0, source});
+}
+
+}  // namespace
+
 std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, Mapping mapping, double amplitude) {
   if (mapping == Mapping::MPM) return expected_orders(dim, shape, amplitude);
   std::vector<OrderExpectation> e;
@@ -340,22 +358,18 @@ std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, Mapping 
   if (mapping == Mapping::IMPM && dim == 1) {
     const std::string src = small ? "Gong 2015 Fig. 5.5 (IMPM, as MPM: second order); extraction T8"
                                   : "Gong 2015 Fig. 5.6 (IMPM, \"second order convergence\"); extraction T7";
-    for (const char* q : {"displacement", "stress", "density"}) e.push_back({q, true, 1.8, 2.0, src});
-    e.push_back({"velocity", true, 1.4, 2.0, src + " (particle velocity, proto 1.64)"});
-    if (!small) e.push_back({"grid_velocity", true, 1.4, 2.0, src + " (grid velocity, proto 1.60)"});
+    second_order_fields(e,
+                        src);  // velocities: reported, not checked (docs/verification.md, open differences)
   } else if (mapping == Mapping::IMPM && dim == 2) {
     const std::string src = "Gong 2015 Figs. 5.7, 5.8 (IMPM 2-D, \"close to second order\"); extraction T11";
-    e.push_back({"displacement", true, 1.8, 2.0, src});
-    for (const char* q : {"stress", "density"}) e.push_back({q, true, 1.7, 2.0, src});
-    e.push_back({"velocity", true, 1.4, 2.0, src + " (proto 1.66)"});
+    second_order_fields(e, src);
   } else if (mapping == Mapping::MlsVelocity && shape == ShapeKind::CPDI1 && dim == 1 && !small) {
     const std::string src =
-        "Gong 2015 Fig. 6.4 (improved CPDI, \"second order\" on coarse meshes as CPDI, Fig. 6.1); "
-        "extraction T12 thresholds (proto local 1.96-2.03)";
-    for (const char* q : {"displacement", "stress", "density"}) e.push_back({q, true, 1.7, 2.0, src});
-    e.push_back({"stress", true, 1.8, 2.0,
-                 "Gong 2015 Fig. 6.4 (\"the rate of convergence of CPDI is improved for finer meshes\"); "
-                 "extraction T14 (proto 2.00)",
+        "Gong 2015 Fig. 6.4 (improved CPDI, \"second order\" on coarse meshes as CPDI, Fig. 6.1)";
+    second_order_fields(e, src);
+    e.push_back({"stress", AtLeast, 2.0,
+                 "Gong 2015 Fig. 6.4 and ch. 8 (improved CPDI: \"from first order to second order for fine "
+                 "meshes\"); extraction T14",
                  256, 2048});
   }
   return e;
@@ -365,36 +379,76 @@ std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, double a
   std::vector<OrderExpectation> e;
   const bool small = amplitude <= 1e-3;
   if (small && shape == ShapeKind::Linear && dim == 1) {
-    const std::string src = "Gong 2015 Fig. 4.7 (\"second order\"); extraction T5";
-    for (const char* q : {"displacement", "stress", "density"}) e.push_back({q, true, 1.8, 2.0, src});
-    e.push_back({"velocity", true, 1.4, 2.0, src + " (particle velocity, proto 1.64)"});
+    const std::string src = "Gong 2015 Fig. 4.7 (\"appears to be second order\"); extraction T5";
+    second_order_fields(e,
+                        src);  // velocities: reported, not checked (docs/verification.md, open differences)
+    // Finer meshes: the mass-weighted (Shepard) mapping is first order once the particles are
+    // unevenly spaced (Gong Table 4.2, Fig. 5.3), an O(G) relative error per unit time that
+    // refinement does not remove: the errors stall at O(G^2) (measured from h = 1/128 at G = 1e-4).
+    e.push_back(
+        {"stress", NoConvergence, 0.0,
+         "Gong 2015 ch. 8 (IMPM raises MPM \"from zeroth order\"); Table 4.2 (Shepard mapping first order "
+         "on uneven points): the error stalls on fine meshes",
+         256, 1024});
   } else if (small && shape == ShapeKind::Linear && dim == 2) {
-    const std::string src = "Gong 2015 Fig. 4.9; extraction T9";
-    e.push_back({"displacement", true, 1.8, 2.0, src});
-    for (const char* q : {"stress", "density", "velocity"})
-      e.push_back({q, true, 1.0, 2.0, src + " (\"between order 1 and order 2\")"});
+    // Fig. 4.9 says "between order 1 and order 2" for stress and density; at T = one period the
+    // exact strain vanishes and with it the O(h) strain error of linear elements (extraction §8),
+    // so the expected order is 2, as in 1-D (docs/verification.md, "Disagreements").
+    e.push_back(
+        {"displacement", AtLeast, 2.0, "Gong 2015 Fig. 4.9 (displacement \"second order\"); extraction T9"});
+    for (const char* q : {"stress", "density"})
+      e.push_back({q, AtLeast, 2.0,
+                   "extraction §8 (at T the exact strain is 0: second order, as Gong Fig. 4.7 in 1-D); Gong "
+                   "Fig. 4.9 says \"between order 1 and order 2\""});
   } else if (small && (shape == ShapeKind::BSpline2 || shape == ShapeKind::BSpline3)) {
-    const std::string src = "issue 3 verification item 4 (B-splines, G = 1e-4)";
-    for (const char* q : {"displacement", "stress", "density"}) e.push_back({q, true, 1.8, 2.0, src});
-    e.push_back({"velocity", true, 1.2, 2.0, src});
+    // The B-splines interpolate with an O(h^2) error, and at G = 1e-4 no particle crosses a cell
+    // boundary: the conditions of Gong's second-order Fig. 4.7 (linear basis) hold.
+    const std::string src =
+        "second order as Gong 2015 Fig. 4.7 (small strain, no cell crossing; the basis interpolates with "
+        "O(h^2))";
+    second_order_fields(e, src);
+    if (dim == 1)
+      e.push_back(
+          {"velocity", AtLeast, 2.0, src + "; particle velocity past its pre-asymptotic range", 64, 512});
   } else if (!small && shape == ShapeKind::Linear) {
     const std::string src = dim == 1 ? "Gong 2015 Fig. 4.8 (\"does not converge\"); extraction T6"
                                      : "Gong 2015 Fig. 4.10 (\"does not converge\"); extraction T10";
-    e.push_back({"stress", false, 0.5, 0.0, src});
+    e.push_back({"stress", NoConvergence, 0.0, src});
   } else if (!small && domain_integrated(shape)) {
-    const std::string src =
-        "Gong 2015 Fig. 6.1 (CPDI, coarse meshes \"second order\"); extraction T12, issue 3 item 4";
-    for (const char* q : {"displacement", "stress", "density"}) e.push_back({q, true, 1.7, 2.0, src});
+    second_order_fields(e,
+                        "Gong 2015 Fig. 6.1 (CPDI, coarse meshes \"appears second order\"); extraction T12");
     if (dim == 1 && shape == ShapeKind::CPDI1)  // checked only when the case has the fine meshes (--full)
-      e.push_back({"stress", false, 1.3, 1.3,
-                   "Gong 2015 Fig. 6.2 (CPDI, finer meshes: \"the convergence rate drops\"); extraction T13",
+      e.push_back({"stress", Near, 1.0,
+                   "Gong 2015 Fig. 6.2 (finer meshes: \"the convergence rate drops\") and ch. 8 (CPDI is "
+                   "\"first order\" on fine meshes); extraction T13",
                    256, 2048});
   }
   return e;
 }
 
+std::vector<OrderExpectation> quarter_period_orders(int dim, ShapeKind shape, Mapping mapping,
+                                                    double amplitude) {
+  std::vector<OrderExpectation> e;
+  if (amplitude > 1e-3 || dim != 1) return e;
+  const bool linear_elements = (shape == ShapeKind::Linear && mapping != Mapping::MlsVelocity) ||
+                               (shape == ShapeKind::CPDI1 && mapping == Mapping::MlsVelocity);
+  if (!linear_elements) return e;
+  const std::string src =
+      "extraction §8 trap 1 and A9: at T/4 the particle stress of MPM, IMPM and improved CPDI is first order "
+      "(cellwise-constant strain, error O(h) |d eps/dx|), displacement and velocity second order";
+  e.push_back({"stress", Near, 1.0, src});
+  e.push_back({"displacement", AtLeast, 2.0, src});
+  e.push_back({"velocity", AtLeast, 2.0, src});
+  return e;
+}
+
+std::string wall_treatment(const MmsOptions& o) {
+  return o.constrain_old_velocity ? "Gong walls (solver.constrain_old_velocity = true, extraction A24)"
+                                  : "Nairn walls (the default, solver.constrain_old_velocity = false)";
+}
+
 VerificationCase make_case(const std::string& problem, ShapeKind shape, double amplitude, bool full,
-                           Mapping mapping) {
+                           Mapping mapping, bool gong_walls, double end_time) {
   VerificationCase c;
   c.problem = problem;
   if (problem == "mms-1d")
@@ -406,30 +460,111 @@ VerificationCase make_case(const std::string& problem, ShapeKind shape, double a
   c.options.shape = shape;
   c.options.mapping = mapping;
   c.options.amplitude = amplitude;
-  c.name = problem + "/" + method_name(shape, mapping) + "/G=" + amplitude_text(amplitude);
-  // The thresholds are for h = 1/8 .. 1/64 (extraction §10); --full adds finer 1-D meshes, which
-  // are reported but enter the fit only through the printed local orders.
+  c.options.constrain_old_velocity = gong_walls;
+  c.options.end_time = end_time;
+  const ManufacturedSolution exact{amplitude};
+  const double period = 2.0 / exact.c();
+  const bool quarter = std::abs(end_time - 0.25 * period) < 1e-12;
+  c.name = problem + "/" + method_name(shape, mapping) + "/G=" + amplitude_text(amplitude) +
+           (quarter                               ? "/T/4"
+            : std::abs(end_time - period) < 1e-12 ? ""
+                                                  : "/t=" + amplitude_text(end_time)) +
+           (gong_walls ? "" : "/nairn-walls");
+  // The coarse-mesh claims are for h = 1/8 .. 1/64 (extraction §10); the 1-D asymptotic velocity
+  // claims add 1/128 .. 1/512 (cheap in 1-D); --full adds the 1-D fine meshes to 1/2048.
+  if (std::abs(end_time - period) < 1e-12)
+    c.expectations = expected_orders(c.options.dim, shape, mapping, amplitude);
+  else if (quarter)
+    c.expectations = quarter_period_orders(c.options.dim, shape, mapping, amplitude);
   c.cells = {8, 16, 32, 64};
+  const bool fine_claim = std::any_of(c.expectations.begin(), c.expectations.end(),
+                                      [](const OrderExpectation& x) { return x.to_cells > 64; });
+  if (fine_claim && c.options.dim == 1) c.cells = {8, 16, 32, 64, 128, 256, 512};
   if (full && c.options.dim == 1) c.cells = {8, 16, 32, 64, 128, 256, 512, 1024, 2048};
   if (!full && c.options.dim == 2) c.cells = {8, 16, 32};
-  c.expectations = expected_orders(c.options.dim, shape, mapping, amplitude);
-  if (mapping == Mapping::IMPM && c.options.dim == 1 && amplitude > 1e-3)
-    c.error_limits.push_back({"stress", 64, 1e4, "extraction T7: E_stress(1/64) < 1e4 Pa (proto 7.48e3)"});
+  if (mapping == Mapping::IMPM && c.options.dim == 1 && amplitude > 1e-3 && !quarter)
+    c.error_limits.push_back(
+        {"stress", 64, 1e4,
+         "extraction T7: E_stress(1/64) < 1e4 Pa (its independent numpy reproduction: 7.48e3)"});
   return c;
 }
 
 std::vector<VerificationCase> verification_suite(bool full) {
+  const double quarter = 0.005;  // T / 4 (one period T = 2 / c = 0.02 s)
   std::vector<VerificationCase> s;
-  s.push_back(make_case("mms-1d", ShapeKind::Linear, 1e-4, full));                      // T5
-  s.push_back(make_case("mms-1d", ShapeKind::Linear, 0.1, full));                       // T6
-  s.push_back(make_case("mms-1d", ShapeKind::CPDI1, 0.1, full));                        // T12
-  s.push_back(make_case("mms-1d", ShapeKind::BSpline2, 1e-4, full));                    // issue 3 item 4
-  s.push_back(make_case("mms-2d", ShapeKind::Linear, 1e-4, full));                      // T9
-  s.push_back(make_case("mms-2d", ShapeKind::Linear, 0.05, full));                      // T10
-  s.push_back(make_case("mms-1d", ShapeKind::Linear, 0.1, full, Mapping::IMPM));        // T7
-  s.push_back(make_case("mms-1d", ShapeKind::CPDI1, 0.1, full, Mapping::MlsVelocity));  // T12-like, T14
-  s.push_back(make_case("mms-2d", ShapeKind::Linear, 0.1, full, Mapping::IMPM));        // T11
+  s.push_back(make_case("mms-1d", ShapeKind::Linear, 1e-4, full));                       // T5
+  s.push_back(make_case("mms-1d", ShapeKind::Linear, 1e-4, full, Mapping::MPM, false));  // the user's walls
+  s.push_back(make_case("mms-1d", ShapeKind::Linear, 1e-4, full, Mapping::MPM, true, quarter));  // §8 trap 1
+  s.push_back(make_case("mms-1d", ShapeKind::Linear, 1e-4, full, Mapping::IMPM, true, quarter));  // §8 trap 1
+  s.push_back(make_case("mms-1d", ShapeKind::Linear, 0.1, full));                                 // T6
+  s.push_back(make_case("mms-1d", ShapeKind::CPDI1, 0.1, full));                                  // T12
+  s.push_back(make_case("mms-1d", ShapeKind::BSpline2, 1e-4, full));                              // B-splines
+  s.push_back(make_case("mms-2d", ShapeKind::Linear, 1e-4, full));                                // T9
+  s.push_back(make_case("mms-2d", ShapeKind::Linear, 1e-4, full, Mapping::MPM, false));  // the user's walls
+  s.push_back(make_case("mms-2d", ShapeKind::Linear, 0.05, full));                       // T10
+  s.push_back(make_case("mms-1d", ShapeKind::Linear, 0.1, full, Mapping::IMPM));         // T7
+  s.push_back(make_case("mms-1d", ShapeKind::CPDI1, 0.1, full, Mapping::MlsVelocity));   // T12-like, T14
+  s.push_back(make_case("mms-2d", ShapeKind::Linear, 0.1, full, Mapping::IMPM));         // T11
   return s;
+}
+
+std::optional<VerificationCheck> order_check(const VerificationCase& c, const OrderExpectation& x,
+                                             const std::vector<MmsResult>& runs) {
+  std::vector<double> h, e;
+  int in_range = 0;
+  bool all_finished = true, inverted = false;
+  double coarsest = std::nan(""), finest = std::nan("");
+  for (const auto& r : runs) {
+    if (r.cells < x.from_cells || r.cells > x.to_cells) continue;
+    ++in_range;
+    if (!r.finished) {
+      all_finished = false;
+      inverted = inverted || r.inverted;
+      continue;
+    }
+    h.push_back(r.h);
+    e.push_back(mms_quantity(r, x.quantity));
+    if (std::isnan(coarsest)) coarsest = e.back();
+    finest = e.back();
+  }
+  if (in_range < 2) return std::nullopt;  // e.g. the fine-mesh claim outside --full
+  const double measured = least_squares_order(h, e);
+  int last = x.from_cells;
+  for (const auto& r : runs)
+    if (r.cells <= x.to_cells) last = std::max(last, r.cells);
+  VerificationCheck check;
+  check.name = c.name + ": " + x.quantity + " order, h = 1/" + std::to_string(x.from_cells) + " .. 1/" +
+               std::to_string(last);
+  check.method = method_name(c.options.shape, c.options.mapping) + ", " +
+                 std::to_string(c.options.particles_per_cell) + " ppc per direction, " +
+                 wall_treatment(c.options) + ", least-squares order";
+  check.measured = measured;
+  check.source = x.source;
+  check.expected = x.expected;
+  check.tolerance = kOrderMargin;
+  switch (x.claim) {
+    case OrderClaim::AtLeast:
+      check.relation = ">=";
+      check.pass = all_finished && std::isfinite(measured) && measured >= x.expected - kOrderMargin;
+      break;
+    case OrderClaim::Near:
+      check.relation = "~";
+      check.pass = all_finished && std::isfinite(measured) && std::abs(measured - x.expected) <= kOrderMargin;
+      break;
+    case OrderClaim::NoConvergence: {
+      check.relation = "no convergence";
+      check.expected = kNoConvergenceOrder;
+      check.tolerance = 0.0;
+      // The failure the source describes: finite errors that do not fall (extraction T6), or the
+      // det F <= 0 stop of extraction §8. NaN or another guard is not that failure.
+      const bool stalled = all_finished && std::isfinite(measured) && measured < kNoConvergenceOrder &&
+                           std::isfinite(finest) && finest > 0.5 * coarsest;
+      check.pass = stalled || inverted;
+      if (inverted) check.name += " (det F <= 0 guard stop)";
+      break;
+    }
+  }
+  return check;
 }
 
 VerificationOutcome run_case(const VerificationCase& c, const std::function<void(const MmsResult&)>& on_run) {
@@ -449,42 +584,8 @@ VerificationOutcome run_case(const VerificationCase& c, const std::function<void
       }
     out.orders.push_back(least_squares_order(h, e));
   }
-  for (const auto& x : c.expectations) {
-    std::vector<double> h, e;
-    int in_range = 0;
-    for (const auto& r : out.runs) {
-      if (r.cells < x.from_cells || r.cells > x.to_cells) continue;
-      ++in_range;
-      if (!r.finished) continue;
-      h.push_back(r.h);
-      e.push_back(mms_quantity(r, x.quantity));
-    }
-    if (in_range < 2) continue;  // e.g. the fine-mesh claim outside --full
-    const double measured = least_squares_order(h, e);
-    int last = x.from_cells;
-    for (const auto& r : out.runs)
-      if (r.cells <= x.to_cells) last = std::max(last, r.cells);
-    VerificationCheck check;
-    check.name = c.name + ": " + x.quantity + " order, h = 1/" + std::to_string(x.from_cells) + " .. 1/" +
-                 std::to_string(last);
-    check.method = method_name(c.options.shape, c.options.mapping) + ", " +
-                   std::to_string(c.options.particles_per_cell) + " ppc per direction, least-squares order";
-    check.measured = measured;
-    check.source = x.source;
-    if (x.at_least) {
-      check.relation = ">=";
-      check.expected = x.expected;
-      check.tolerance = x.expected - x.threshold;
-      check.pass = std::isfinite(measured) && measured >= x.threshold;
-    } else {
-      check.relation = "<";
-      check.expected = x.threshold;
-      check.tolerance = 0.0;
-      // A run that stops at det F <= 0 inside the range is also "no convergence".
-      check.pass = !std::isfinite(measured) || measured < x.threshold;
-    }
-    out.checks.push_back(check);
-  }
+  for (const auto& x : c.expectations)
+    if (auto check = order_check(c, x, out.runs)) out.checks.push_back(*check);
   for (const auto& x : c.error_limits)
     for (const auto& r : out.runs) {
       if (r.cells != x.cells) continue;
@@ -493,7 +594,7 @@ VerificationOutcome run_case(const VerificationCase& c, const std::function<void
       check.method =
           method_name(c.options.shape, c.options.mapping) + ", particle quadrature (extraction A8)";
       check.measured = r.finished ? mms_quantity(r, x.quantity) : std::nan("");
-      check.relation = "<";
+      check.relation.assign(1, '<');  // (not = "<": a GCC 12 -Wrestrict false positive)
       check.expected = x.below;
       check.pass = std::isfinite(check.measured) && check.measured < x.below;
       check.source = x.source;
@@ -556,7 +657,8 @@ nlohmann::json checks_json(const std::vector<VerificationOutcome>& outcomes,
          {"tolerance", c.tolerance},
          {"relation", c.relation},
          {"pass", c.pass},
-         {"source", c.source}});
+         {"source", c.source},
+         {"kind", c.kind}});
   return list;
 }
 

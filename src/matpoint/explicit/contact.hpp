@@ -113,10 +113,25 @@ class MultiFieldContact {
       e.prior = spec_.fmpm_method == ContactFmpmMethod::Net ? dp0 : Vec<D>(dp0 - dp);
       e.net = dp;
     }
-    for (const auto& e : entries_) apply(e, e.applied, mass, x, momentum);
+    for (auto& e : entries_) {
+      apply(e, e.applied, mass, x, momentum);
+      e.total = e.applied;
+    }
     if (friction_work)
       for (const auto& e : entries_)
-        if (e.law.law == ContactLaw::Coulomb) *friction_work += slip_work(e, mass, velocity);
+        if (e.law.law == ContactLaw::Coulomb) *friction_work += slip_work(e, e.total, mass, velocity);
+  }
+
+  /// The friction work of an FMPM step, after the loop: each Coulomb node's total tangential
+  /// correction (the lumped one of task 3.a plus every increment's correction in the loop) times
+  /// the slip left in the final velocities v+(k) that move the particles. (On a FLIP step
+  /// apply_lumped counts the same product with v+(1).)
+  [[nodiscard]] double friction_work(const std::vector<double>& mass, const std::vector<Vec<D>>& velocity) const {
+    const auto v = [&](Index i) -> Vec<D> { return velocity[i]; };
+    double work = 0.0;
+    for (const auto& e : entries_)
+      if (e.law.law == ContactLaw::Coulomb) work += slip_work(e, e.total, mass, v);
+    return work;
   }
 
   /// FMPM loop line (2) on the increment dv(l) of every field: rigid fields get no increment, and
@@ -134,7 +149,10 @@ class MultiFieldContact {
       e.prior = net ? dp0 : Vec<D>(dp0 - dp);
       e.net = dp;
     }
-    for (const auto& e : entries_) apply(e, e.applied, mass, dv, false);
+    for (auto& e : entries_) {
+      apply(e, e.applied, mass, dv, false);
+      e.total += e.applied;
+    }
   }
 
  private:
@@ -147,6 +165,7 @@ class MultiFieldContact {
     Vec<D> normal = Vec<D>::Zero();  // from a to b
     bool touching = true;            // normal defined and, with the position criterion, gap closed
     Vec<D> prior = Vec<D>::Zero(), net = Vec<D>::Zero(), applied = Vec<D>::Zero();
+    Vec<D> total = Vec<D>::Zero();  // every correction applied this step (the friction impulse)
   };
 
   [[nodiscard]] Index at(int f, Index node) const { return f * nodes_ + node; }
@@ -303,9 +322,10 @@ class MultiFieldContact {
   /// rate), dp_t . (v_b - v_a)_after >= 0; zero where the law sticks (Nairn, Bardenhagen & Smith
   /// 2018: frictional heating = friction force x slip).
   template <class Velocity>
-  [[nodiscard]] double slip_work(const Entry& e, const std::vector<double>& mass, const Velocity& v) const {
+  [[nodiscard]] double slip_work(const Entry& e, const Vec<D>& impulse, const std::vector<double>& mass,
+                                 const Velocity& v) const {
     if (!e.touching) return 0.0;
-    const Vec<D> dp_t = e.applied - e.applied.dot(e.normal) * e.normal;
+    const Vec<D> dp_t = impulse - impulse.dot(e.normal) * e.normal;
     const Index ia = at(e.a, e.node);
     double m_eff = mass[ia];  // change_to_common = m_eff (v_b - v_a)
     if (e.kind == Kind::Pair) {

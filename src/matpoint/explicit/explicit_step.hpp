@@ -17,6 +17,7 @@
 #include "matpoint/explicit/scatter.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/particles/generators.hpp"
+#include "matpoint/shape/domain_motion.hpp"
 
 namespace matpoint {
 
@@ -29,7 +30,7 @@ class ExplicitStepper {
   static constexpr bool kFields = requires { Stencils::multi_field; };
 
   explicit ExplicitStepper(Simulation<D>& sim)
-      : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm), mls_(sim.solver.mls) {
+      : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm, sim.significant_mass), mls_(sim.solver.mls) {
     velocity_.resize(sim.fields.mass.size());
     if constexpr (kFields) set_up_fields();
     for (std::size_t p = 0; p < sim.particles.size(); ++p)
@@ -91,6 +92,7 @@ class ExplicitStepper {
         break;
     }
     s_.time = t_new;
+    s_.last_dt = dt;
     ++s_.step;
   }
 
@@ -140,6 +142,7 @@ class ExplicitStepper {
   template <unsigned What>
   void scatter_mls(const std::vector<Vec<D>>* body) {
     constexpr unsigned kMassForce = What & (kScatterMass | kScatterForce);
+    if constexpr ((What & kScatterMass) != 0) step_start_x_ = s_.particles.x;  // for the re-extrapolation
     mls_.bin(s_.grid, s_.particles);
     if constexpr (kMassForce != 0) {
       if (s_.solver.mapping == Mapping::IMPM)
@@ -149,8 +152,20 @@ class ExplicitStepper {
         scatter_to_grid<kMassForce>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields, workspace_,
                                     static_cast<const std::vector<Vec<D>>*>(nullptr), body);
     }
-    if constexpr ((What & kScatterMomentum) != 0)
-      mls_.node_momentum(s_.grid, s_.particles, s_.fields.mass, s_.mass_floor, s_.fields.momentum);
+    if constexpr ((What & kScatterMomentum) != 0) {
+      if constexpr (What == kScatterMomentum) {
+        // MUSL / USAVG+ re-extrapolation after the particles moved: standard MUSL maps the new
+        // particle velocities with the stencils and masses of the start of the step, so the MLS fit
+        // uses the start-of-step positions too (fitting them at the moved positions would shift the
+        // fitted field by dx and give L = A - A^2 dt for a linear field v = A x).
+        std::swap(s_.particles.x, step_start_x_);
+        mls_.bin(s_.grid, s_.particles);
+        mls_.node_momentum(s_.grid, s_.particles, s_.fields.mass, s_.mass_floor, s_.fields.momentum);
+        std::swap(s_.particles.x, step_start_x_);
+      } else {
+        mls_.node_momentum(s_.grid, s_.particles, s_.fields.mass, s_.mass_floor, s_.fields.momentum);
+      }
+    }
   }
 
   void record_momentum_difference() {
@@ -175,7 +190,8 @@ class ExplicitStepper {
   void contact_after_update(double dt, double t_new, Vec<D>& impulse, double& work) {
     auto& f = s_.fields;
     s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
-    s_.contact.apply_lumped(f.mass, f.velocity_new, false, &s_.friction_work);
+    // FMPM steps count the friction work after the loop (contact.friction_work), FLIP steps here
+    s_.contact.apply_lumped(f.mass, f.velocity_new, false, fmpm_now_ ? nullptr : &s_.friction_work);
     s_.conditions.apply(f.velocity_new, t_new, &f.mass, &impulse, &work);
     s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
     const auto n = static_cast<std::ptrdiff_t>(f.mass.size());
@@ -232,11 +248,17 @@ class ExplicitStepper {
     if (fmpm_now_) {
       fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new,
                 s_.fields.velocity_new, workspace_, &impulse, &work);
+      if constexpr (kFields) s_.friction_work += s_.contact.friction_work(s_.fields.mass, s_.fields.velocity_new);
     } else if (s_.solver.transfer == VelocityTransfer::XPIC) {
-      auto& vx = s_.fields.velocity_xpic;  // the series on the old lumped velocities (§1.5)
+      // The series on the old lumped velocities (§1.5). Its increments are zeroed on the condition
+      // directions as FMPM's are (Table 2, bottom block), so that a condition node keeps v(1) and
+      // ends at v(1) + a dt = v+(1), its prescribed value; the momentum and work that zeroing
+      // removes are the conditions' and are counted as their impulse and work (our choice: the
+      // paper gives XPIC only by reference; without it, walls would not hold exactly under XPIC).
+      auto& vx = s_.fields.velocity_xpic;
       vx = s_.fields.velocity;
       fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new, vx,
-                workspace_);
+                workspace_, &impulse, &work);
       for (std::size_t i = 0; i < vx.size(); ++i) vx[i] += s_.fields.acceleration[i] * dt;
     }
     s_.external_impulse += impulse + total_mass_ * s_.gravity * dt;
@@ -244,13 +266,23 @@ class ExplicitStepper {
   }
 
   void move_particles(double dt, bool with_gradient) {
-    TransferParameters transfer{s_.solver.transfer, s_.solver.position_alpha, s_.solver.flip_fraction};
+    TransferParameters transfer{s_.solver.transfer, s_.solver.position_alpha, s_.solver.flip_fraction,
+                                s_.mass_floor};
     if (transfer.kind == VelocityTransfer::FMPM && !fmpm_now_)
       transfer.kind = VelocityTransfer::FLIP;  // periodic
+    constexpr bool kTrackedDomains =
+        requires { stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt, DomainMotion<D>{}); };
+    if constexpr (kTrackedDomains) old_velocity_ = s_.particles.v;
     const auto result =
         gather_and_move(grid_, stencils_, s_.fields, s_.particles, transfer, dt, with_gradient, s_.gravity);
-    if constexpr (requires { stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt); })
-      stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt);  // CPDI2 corners (Gong 2015 eq. (6.28))
+    if constexpr (kTrackedDomains) {  // CPDI2 corners (Gong 2015 eq. (6.28)) with the transfer's alpha
+      const bool xpic = transfer.kind == VelocityTransfer::XPIC;
+      const double flip = transfer.kind == VelocityTransfer::FLIP    ? 1.0
+                          : transfer.kind == VelocityTransfer::Blend ? transfer.flip_fraction
+                                                                     : 0.0;
+      stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt,
+                             DomainMotion<D>{flip, transfer.alpha, xpic, &old_velocity_});
+    }
     if constexpr (kFields) move_rigid_particles(s_.time + dt);
     s_.external_work += result.gravity_work;
     if (result.first_outside >= 0) fail_outside(result.first_outside);
@@ -271,7 +303,7 @@ class ExplicitStepper {
     if (fmpm_now_)
       fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t, velocity_,
                 workspace_);
-    gather_velocity_gradient(grid_, stencils_, velocity_, s_.particles);
+    gather_velocity_gradient(grid_, stencils_, velocity_, s_.particles, s_.fields.mass, s_.mass_floor);
     update_strain(dt);
   }
 
@@ -337,6 +369,8 @@ class ExplicitStepper {
   Grid<D> grid_;  // s_.grid, with node_count over every field of a contact run
   ScatterWorkspace<D> workspace_;
   std::vector<Vec<D>> velocity_;  // scratch node velocities for USF / MUSL
+  std::vector<Vec<D>> old_velocity_;  // CPDI2: V^n of every particle, for its corners' motion
+  std::vector<Vec<D>> step_start_x_;  // MLS mapping: positions of the start of the step
   FmpmLoop<D> fmpm_;
   MlsMapping<D> mls_;
   bool fmpm_now_ = false;     // this step runs the FMPM loop

@@ -34,7 +34,8 @@ struct FmpmStatistics {
 template <int D>
 class FmpmLoop {
  public:
-  explicit FmpmLoop(const FmpmSpec& spec = {}) : spec_(spec) {}
+  explicit FmpmLoop(const FmpmSpec& spec = {}, double measure_floor = 0.0)
+      : spec_(spec), measure_floor_(measure_floor) {}
 
   /// Replaces v (on entry v+(1) = m^-1 p+ with the velocity conditions applied, the first line of
   /// Table 1) by v+(k). `t` is the time of the conditions (used by the "combined" method only).
@@ -113,7 +114,8 @@ class FmpmLoop {
       if (correction_) correction_(prev_);                            // (2) contact (Net or Evolving)
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) v[i] += prev_[i];
-      if (spec_.measure != FmpmMeasure::None && measure(mass, mass_floor, v) < spec_.limit) return l;  // (3)
+      if (spec_.measure != FmpmMeasure::None && measure(mass, std::max(mass_floor, measure_floor_), v) < spec_.limit)
+        return l;  // (3)
     }
     return spec_.order;
   }
@@ -175,6 +177,7 @@ class FmpmLoop {
   }
 
   FmpmSpec spec_;
+  double measure_floor_ = 0.0;  // nodes at or below it are left out of the dynamic measures
   FmpmStatistics statistics_;
   std::vector<Vec<D>> prev_, next_;  // dv(l - 1) and S+S dv(l - 1)
   std::vector<Vec<D>> gathered_;     // U_p

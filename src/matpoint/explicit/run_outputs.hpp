@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -24,28 +25,41 @@
 
 namespace matpoint {
 
-/// Decides which steps write output.
+/// Decides which steps write output. An every_time schedule has its output times at n every_time
+/// (n = 1, 2, ...), computed from n rather than summed, and the time loop lands on them exactly.
 class OutputSchedule {
  public:
   /// `next_time`: the next output time of an every_time schedule (a restart's, or every_time).
-  OutputSchedule(const OutputSpec& o, double time, double next_time) : spec_(o), next_time_(next_time) {
-    const double every = o.every_time;  // a restart may change every_time: start on its next multiple
-    if (every > 0 && !(next_time_ > time && next_time_ <= time + every * (1 + 1e-9)))
-      next_time_ = (std::floor(time / every) + 1) * every;
+  OutputSchedule(const OutputSpec& o, double time, double next_time) : spec_(o) {
+    const double every = o.every_time;
+    if (every <= 0) return;
+    next_index_ = std::llround(next_time / every);
+    // a restart may change every_time: start on its next multiple
+    if (!(next_index_ * every > time * (1 + 1e-12))) next_index_ = std::llround(std::floor(time / every)) + 1;
+    while (next_index_ * every <= time * (1 + 1e-12)) ++next_index_;
   }
-  bool due(long step, double time, double dt) {
+  /// The step ending at `time` writes output (every_steps, or `time` reached the next output time).
+  bool due(long step, double time) {
     if (spec_.every_steps > 0) return step % spec_.every_steps == 0;
-    if (spec_.every_time > 0 && time >= next_time_ - 1e-6 * dt) {
-      while (next_time_ <= time + 1e-6 * dt) next_time_ += spec_.every_time;
+    if (spec_.every_time > 0 && time >= next_time() * (1 - 1e-12)) {
+      while (next_time() <= time * (1 + 1e-12)) ++next_index_;
       return true;
     }
     return false;
   }
-  [[nodiscard]] double next_time() const { return next_time_; }
+  /// The next output time (every_time), 0 without an every_time schedule.
+  [[nodiscard]] double next_time() const {
+    return spec_.every_time > 0 ? static_cast<double>(next_index_) * spec_.every_time : 0.0;
+  }
+  /// The time a step starting at `time` must not step over: the next output time, or +infinity.
+  [[nodiscard]] double target_time(double time) const {
+    const double next = next_time();
+    return spec_.every_time > 0 && next > time ? next : std::numeric_limits<double>::infinity();
+  }
 
  private:
   OutputSpec spec_;
-  double next_time_;
+  long long next_index_ = 0;
 };
 
 namespace run_outputs_detail {
@@ -65,6 +79,22 @@ inline std::string output_name(long index, const char* prefix) {
 
 }  // namespace run_outputs_detail
 
+/// The names of the .vtu `state` components: the models' own where the materials with history
+/// agree, "a|b" where two models use a component for different things.
+template <int D>
+std::vector<std::string> state_component_names(const Simulation<D>& sim) {
+  std::vector<std::string> names(static_cast<std::size_t>(sim.particles.state_stride));
+  for (const auto& material : sim.materials) {
+    const auto own = state_names(material);
+    for (std::size_t i = 0; i < own.size() && i < names.size(); ++i)
+      if (names[i].empty())
+        names[i] = own[i];
+      else if (names[i] != own[i])
+        names[i] += "|" + own[i];
+  }
+  return names;
+}
+
 /// One history.csv row of the simulation's present state; `probe_ids`: the particles of output.probes.
 template <int D>
 HistorySample history_sample(const Simulation<D>& sim, int body_count, const std::vector<long>& probe_ids) {
@@ -73,6 +103,7 @@ HistorySample history_sample(const Simulation<D>& sim, int body_count, const std
   HistorySample s;
   s.time = sim.time;
   s.step = sim.step;
+  s.dt = sim.last_dt;
   s.kinetic_energy = d.kinetic_energy;
   s.strain_energy = d.strain_energy;
   s.external_work = sim.external_work;
@@ -130,7 +161,9 @@ class RunOutputs {
       write_history();
     if (spec_.output.particles) {
       const std::string name = run_outputs_detail::output_name(outputs_, "particles_");
-      write_file_atomically(out_dir_ / name, particles_vtu(sim.particles, spec_.output.fields));
+      write_file_atomically(out_dir_ / name,
+                            particles_vtu(sim.particles, spec_.output.fields, &sim.initial_position,
+                                          state_component_names(sim)));
       pvd_.add(sim.time, name);
       if (write_domains_) {
         const std::string domains = run_outputs_detail::output_name(outputs_, "domains_");

@@ -4,9 +4,26 @@
 
 #include "matpoint/analysis/measures_eval.hpp"
 #include "matpoint/core/version.hpp"
-#include "matpoint/explicit/courant_limits.hpp"
+#include "matpoint/explicit/setup_warnings.hpp"
 
 namespace matpoint {
+
+namespace {
+
+/// The input's name of a check kind (checks[].kind; docs/verification.md counts each kind apart).
+const char* check_kind_name(CheckKind kind) {
+  switch (kind) {
+    case CheckKind::Regression:
+      return "regression";
+    case CheckKind::Guard:
+      return "guard";
+    case CheckKind::Verification:
+      break;
+  }
+  return "verification";
+}
+
+}  // namespace
 
 namespace {
 
@@ -59,6 +76,7 @@ void add_checks(const Spec& spec, const RunFacts& f, const History& history, nlo
                            {"expected", c.expected},
                            {"tolerance", c.tolerance},
                            {"pass", pass},
+                           {"kind", check_kind_name(c.kind)},
                            {"source", c.source}});
   }
   s["checks_pass"] = all_pass;
@@ -86,7 +104,8 @@ nlohmann::json run_summary(const Spec& spec, const RunOptions& options, const Ru
                                            {"reference_position", f.probes[k].reference_position}});
   }
   s["warnings"] = nlohmann::json::array();  // e.g. a Courant number above the measured stability limit
-  if (const auto warning = courant_warning(spec.solver); !warning.empty()) s["warnings"].push_back(warning);
+  for (const auto& warning : setup_warnings(spec)) s["warnings"].push_back(warning);
+  for (const auto& warning : f.warnings) s["warnings"].push_back(warning);
   s["dimension"] = f.dimension;
   s["particles"] = f.particles;
   s["nodes"] = f.nodes;

@@ -44,6 +44,7 @@ struct RunFacts {
     std::vector<double> reference_position;  // its X
   };
   std::vector<Probe> probes;  // output.probes, in input order
+  std::vector<std::string> warnings;  // found while running (setup_warnings() adds the input's own)
 };
 
 /// The summary; `checks_pass` is true when every check of the input passed.

@@ -1,20 +1,24 @@
 #include "matpoint/explicit/runner.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <ctime>
 #include <sstream>
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/interrupt.hpp"
 #include "matpoint/core/progress.hpp"
+#include "matpoint/core/subprocess.hpp"
+#include "matpoint/explicit/energy_guard.hpp"
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/explicit/run_outputs.hpp"
 #include "matpoint/explicit/run_summary.hpp"
 #include "matpoint/io/atomic_file.hpp"
 #include "matpoint/io/checkpoint.hpp"
+#include "matpoint/io/output_folder.hpp"
 #include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
@@ -63,6 +67,7 @@ RunCounters start_state(const Spec& spec, const RunOptions& options, Simulation<
   RunCounters run;
   if (!options.restart.empty()) {
     read_checkpoint<D>(options.restart, spec.echo, sim, run, history);
+    refuse_stale_checkpoint(options.restart, sim.step);  // a finished run went further than it
     if (run.threads != current_threads())
       std::fprintf(
           stderr,
@@ -110,6 +115,44 @@ class CheckpointClock {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+/// cpGIMP's half-width |F_aa| l0 is capped at h/2 (shape/tensor_stencils.hpp, as Gong's formula
+/// assumes); past that the domain no longer has the volume V0 det F. Marks (by particle id) every
+/// particle stretched past the cap, checked every few steps; the run warns once with the count.
+class CappedDomains {
+ public:
+  CappedDomains(const Spec& spec, std::size_t particles)
+      : active_(spec.solver.shape == ShapeKind::CpGIMP), capped_(active_ ? particles : 0, 0) {}
+
+  template <int D>
+  void check(const Simulation<D>& sim) {
+    if (!active_ || sim.step % EnergyGuard::kInterval != 0) return;
+    const auto& ps = sim.particles;
+    for (std::size_t p = 0; p < ps.size(); ++p)
+      for (int a = 0; a < D; ++a)
+        if (0.5 * ps.size0[p][a] * std::abs(ps.F[p](a, a)) > 0.5 * sim.grid.h[a]) {
+          if (capped_[ps.id[p]] == 0 && first_time_ < 0) first_time_ = sim.time;
+          capped_[ps.id[p]] = 1;
+        }
+  }
+
+  /// The warning, or an empty string when no particle reached the cap.
+  [[nodiscard]] std::string warning() const {
+    const auto count = std::count(capped_.begin(), capped_.end(), 1);
+    if (count == 0) return {};
+    std::ostringstream text;
+    text << "cpGIMP: " << count << " of " << capped_.size()
+         << " particles were stretched past a domain half-width of h/2 (first at t = " << first_time_
+         << "); their domains were capped there and no longer have the volume V0 det F (Gong 2015 §6.3); "
+            "uGIMP, CPDI or a finer grid avoid it";
+    return text.str();
+  }
+
+ private:
+  bool active_;
+  std::vector<char> capped_;
+  double first_time_ = -1.0;
+};
+
 /// The summary's facts about the final state and the solver's counters.
 template <int D, class Stepper>
 void add_state_facts(const Spec& spec, const Simulation<D>& sim, const Stepper& stepper, RunFacts& facts) {
@@ -135,7 +178,6 @@ RunResult run_with(const Spec& spec, const RunOptions& options) {
   History restored{D, static_cast<int>(spec.bodies.size()), probe_columns(spec), {}};
   RunCounters run = start_state<D>(spec, options, sim, restored);  // may throw InputError too
   const bool restarting = !options.restart.empty();
-  const double dt = run.dt;
   std::filesystem::create_directories(options.out_dir);
   const auto probe_ids = probe_particle_ids<D>(sim.initial_position, spec.output.probes);
   RunOutputs<D> outputs(spec, options.out_dir, std::move(restored), run, probe_ids);
@@ -163,6 +205,7 @@ RunResult run_with(const Spec& spec, const RunOptions& options) {
   // A checkpoint holds the state after a completed step with the scheduled outputs up to it; it is
   // taken before the extra output of a run's last step, so a restart repeats the outputs exactly.
   CheckpointClock checkpoints(spec.output.checkpoint, options.out_dir, restarting ? sim.step : -1);
+  double dt = run.dt;  // the present full step (recomputed each step)
   auto save_checkpoint = [&] {
     RunCounters now = run;
     const auto stepper_state = stepper.state();
@@ -175,6 +218,7 @@ RunResult run_with(const Spec& spec, const RunOptions& options) {
     now.fmpm_passes = stepper_state.fmpm.passes;
     now.fmpm_seconds = stepper_state.fmpm.seconds;
     now.step_wall = step_wall, now.step_cpu = step_cpu, now.wall = wall_now();
+    now.dt = dt;
     now.threads = current_threads();
     now.results = outputs.results_entries(), now.domains = outputs.domains_entries();
     checkpoints.save<D>(sim, now, outputs.history(), spec.echo);
@@ -182,21 +226,33 @@ RunResult run_with(const Spec& spec, const RunOptions& options) {
 
   int interrupted = 0;
   const double end_time = spec.solver.end_time;
-  while (sim.time < end_time - 1e-9 * dt &&
-         (spec.solver.max_steps == 0 || sim.step < spec.solver.max_steps)) {
-    const double h = std::min(dt, end_time - sim.time);
+  EnergyGuard energy_guard(spec.solver.max_energy_growth, outputs.history());
+  CappedDomains capped_domains(spec, sim.particles.size());
+  while (sim.time < end_time * (1 - 1e-12) && (spec.solver.max_steps == 0 || sim.step < spec.solver.max_steps)) {
+    // Nairn 2026 §1.8: dt = C dx / max_p max(c_p, |V_p|) from the present state (or solver.dt),
+    // shortened (or stretched by at most 1e-6) to land exactly on the next output time and the end.
+    dt = stable_time_step(sim);
+    const double target =
+        spec.output.exact_times ? std::min(end_time, schedule.target_time(sim.time)) : end_time;
+    const bool lands = target - sim.time <= dt * (1 + 1e-6);
+    const double h = lands ? target - sim.time : dt;
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
+    bool recorded = false;
     try {
       stepper.step(h);
+      if (lands) sim.time = target;  // exactly, not t + (target - t) rounded
+      step_cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+      step_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      recorded = schedule.due(sim.step, sim.time);
+      energy_guard.after_step(sim, recorded);
+      capped_domains.check(sim);
     } catch (const NumericalFailure& failure) {
       result.exit_code = kExitNumerical;
       result.message = failure.what();
       break;
     }
-    step_cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-    step_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (schedule.due(sim.step, sim.time, h)) {
+    if (recorded) {
       outputs.record(sim);
       last_recorded_step = sim.step;
     }
@@ -225,13 +281,14 @@ RunResult run_with(const Spec& spec, const RunOptions& options) {
   facts.restart_step = restarting ? restart_step : -1;
   facts.checkpoint_file = checkpoints.file();
   facts.checkpoint_step = checkpoints.step();
-  facts.dt = dt;
+  facts.dt = dt;  // the last full step's (fixed: solver.dt)
   facts.wall = wall_now();
   facts.step_wall = step_wall;
   facts.step_cpu = step_cpu;
   facts.outputs = outputs.count();
   facts.momentum_scale = run.momentum_scale;
   add_state_facts(spec, sim, stepper, facts);
+  if (auto warning = capped_domains.warning(); !warning.empty()) facts.warnings.push_back(std::move(warning));
   for (long id : probe_ids) {
     const Vec<D>& X = sim.initial_position[id];
     facts.probes.push_back({id, std::vector<double>(X.data(), X.data() + D)});
@@ -239,8 +296,9 @@ RunResult run_with(const Spec& spec, const RunOptions& options) {
 
   result.summary = run_summary(spec, options, facts, outputs.history());
   write_file_atomically(options.out_dir / "summary.json", result.summary.dump(2) + "\n");
-  if (spec.output.plots && !options.scripts_dir.empty() && !draw_plots(options.out_dir, options.scripts_dir))
-    std::fprintf(stderr, "warning: could not draw plots (needs python3-matplotlib)\n");
+  if (spec.output.plots && !options.scripts_dir.empty())
+    if (const auto error = draw_plots(options.out_dir, options.scripts_dir); !error.empty())
+      std::fprintf(stderr, "warning: could not draw plots: %s\n", error.c_str());
   result.history = outputs.take_history();
   return result;
 }
@@ -294,14 +352,8 @@ RunResult run_explicit(const Spec& spec, const RunOptions& options) {
   }
 }
 
-bool draw_plots(const std::filesystem::path& out_dir, const std::filesystem::path& scripts_dir) {
-  const auto script = scripts_dir / "plot_history.py";
-  if (!std::filesystem::exists(script)) return false;
-  // Debian's interpreter first: python3-matplotlib installs there, whatever else is on PATH.
-  const char* python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string command =
-      std::string(python) + " '" + script.string() + "' '" + out_dir.string() + "' > /dev/null";
-  return std::system(command.c_str()) == 0;
+std::string draw_plots(const std::filesystem::path& out_dir, const std::filesystem::path& scripts_dir) {
+  return run_python_script(scripts_dir / "plot_history.py", {out_dir.string()});
 }
 
 }  // namespace matpoint

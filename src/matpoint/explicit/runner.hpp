@@ -31,7 +31,8 @@ struct RunResult {
 /// or when options.restart is not a usable checkpoint of this input.
 RunResult run_explicit(const Spec& spec, const RunOptions& options);
 
-/// Draws plots/*.png of an output folder with the project's matplotlib script; false on failure.
-bool draw_plots(const std::filesystem::path& out_dir, const std::filesystem::path& scripts_dir);
+/// Draws plots/*.png of an output folder with the project's matplotlib script (no shell involved);
+/// returns "" on success, else why not (the script's own error message included).
+std::string draw_plots(const std::filesystem::path& out_dir, const std::filesystem::path& scripts_dir);
 
 }  // namespace matpoint

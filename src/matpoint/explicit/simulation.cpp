@@ -1,10 +1,12 @@
 #include "matpoint/explicit/simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
 #include "matpoint/core/errors.hpp"
+#include "matpoint/material/wave_speed.hpp"
 #include "matpoint/particles/generators.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 
@@ -127,6 +129,7 @@ Simulation<D> build_simulation(const Spec& spec) {
   sim.solver = spec.solver;
   const double heaviest = *std::max_element(sim.particles.mass.begin(), sim.particles.mass.end());
   sim.mass_floor = spec.solver.mass_tolerance * heaviest;
+  sim.significant_mass = std::max(sim.mass_floor, 1e-12 * heaviest);
   sim.rigid_material.assign(spec.materials.size(), 0);
   for (std::size_t m = 0; m < spec.materials.size(); ++m)
     sim.rigid_material[m] = spec.materials[m].model == MaterialModel::Rigid ? 1 : 0;
@@ -144,8 +147,12 @@ double max_wave_speed(const Simulation<D>& sim) {
 template <int D>
 double stable_time_step(const Simulation<D>& sim) {
   if (sim.solver.dt) return *sim.solver.dt;
-  double speed = max_wave_speed(sim);
-  for (const auto& v : sim.particles.v) speed = std::max(speed, v.norm());
+  double speed = max_current_wave_speed<D>(sim.materials, sim.particles);
+  double fastest2 = 0.0;
+  const auto n = static_cast<std::ptrdiff_t>(sim.particles.size());
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : fastest2)
+  for (std::ptrdiff_t p = 0; p < n; ++p) fastest2 = std::max(fastest2, sim.particles.v[p].squaredNorm());
+  speed = std::max(speed, std::sqrt(fastest2));
   return sim.solver.courant * sim.grid.min_cell_size() / speed;
 }
 

@@ -24,6 +24,10 @@ struct Simulation {
   Vec<D> gravity = Vec<D>::Zero();
   SolverSpec solver;
   double mass_floor = 0.0;  // nodes at or below this mass are inactive
+  // Nodes above this mass (1e-12 of the heaviest particle, or mass_floor) enter the dynamic FMPM
+  // measures' node means (Nairn 2026 §3.4): a node that a particle barely reaches is active, but
+  // its relative velocity change carries no information and would dominate a per-node mean.
+  double significant_mass = 0.0;
 
   std::vector<Vec<D>> initial_velocity;  // V_p(0) by particle id (velocity-change diagnostics)
   std::vector<Vec<D>> initial_position;  // X_p (Lagrangian position) by particle id
@@ -45,6 +49,7 @@ struct Simulation {
 
   double time = 0.0;
   long step = 0;
+  double last_dt = 0.0;                      // the size of the last step taken (history.csv dt)
   double external_work = 0.0;                // gravity + moving walls, accumulated
   Vec<D> external_impulse = Vec<D>::Zero();  // gravity + grid conditions, accumulated
   // sum_i p_i - sum_p M_p V_p at the last momentum transfer: zero up to round-off with the
@@ -69,7 +74,8 @@ void check_setup(const Spec& spec);
 template <int D>
 double max_wave_speed(const Simulation<D>& sim);
 
-/// Time step: the input's dt, or courant * h_min / max(largest wave speed, largest particle speed).
+/// Time step: the input's dt, or courant * h_min / max_p max(c_p, |V_p|) with each particle's
+/// present wave speed c_p (Nairn 2026 §1.8; material/wave_speed.hpp). Recomputed every step.
 template <int D>
 double stable_time_step(const Simulation<D>& sim);
 

@@ -107,24 +107,37 @@ void VelocityConditions<D>::apply(std::vector<Vec<D>>& v, double t, const std::v
     held_.clear();
     for (const auto& e : entries_) held_.push_back(static_cast<char>(holds(e, v)));
   }
-  for (std::size_t k = 0; k < entries_.size(); ++k) {
-    const auto& e = entries_[k];
-    if (one_sided_ && !held_[k]) continue;
-    const double set = e.function < 0 ? 0.0 : value[e.function];
-    if (mass && impulse && work) {
-      const double dp = (*mass)[e.node] * (set - v[e.node][e.axis]);
-      (*impulse)[e.axis] += dp;
+  // Nairn 2026 Table 2, top block (superposition): first every held condition removes the
+  // velocity along its direction (a second condition along the same direction removes 0), then
+  // each adds its own prescribed velocity, so conditions on one node add up, v = sum_b v^(b) n^(b).
+  const std::size_t count = entries_.size() + wall_entries_.size();
+  free_.assign(count, 0.0);
+  const auto node_axis = [&](std::size_t k) {
+    return k < entries_.size() ? std::pair{entries_[k].node, entries_[k].axis}
+                               : std::pair{wall_entries_[k - entries_.size()].node,
+                                           wall_entries_[k - entries_.size()].axis};
+  };
+  const auto held = [&](std::size_t k) { return k >= entries_.size() || !one_sided_ || held_[k] != 0; };
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!held(k)) continue;
+    const auto [node, axis] = node_axis(k);
+    free_[k] = v[node][axis];
+    v[node][axis] = 0.0;
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!held(k)) continue;
+    const auto [node, axis] = node_axis(k);
+    double set = 0.0;
+    if (k < entries_.size())
+      set = entries_[k].function < 0 ? 0.0 : value[entries_[k].function];
+    else
+      set = wall_entries_[k - entries_.size()].value;
+    v[node][axis] += set;
+    if (mass && impulse && work) {  // this condition's share: m (v^(b) - its free component)
+      const double dp = (*mass)[node] * (set - free_[k]);
+      (*impulse)[axis] += dp;
       *work += dp * set;
     }
-    v[e.node][e.axis] = set;
-  }
-  for (const auto& e : wall_entries_) {
-    if (mass && impulse && work) {
-      const double dp = (*mass)[e.node] * (e.value - v[e.node][e.axis]);
-      (*impulse)[e.axis] += dp;
-      *work += dp * e.value;
-    }
-    v[e.node][e.axis] = e.value;
   }
 }
 

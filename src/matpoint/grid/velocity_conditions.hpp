@@ -22,7 +22,8 @@ class VelocityConditions {
   /// after the nodal masses are known.
   void select_wall_nodes(double t, const std::vector<double>& mass, double mass_floor);
 
-  /// Sets every constrained component of v at time t (one-sided faces: on the nodes moving into them). Where
+  /// Sets every constrained component of v at time t (one-sided faces: on the nodes moving into them);
+  /// conditions on one node along one direction add up (Nairn 2026 Table 2). Where
   /// mass is given, adds to `impulse` the momentum the constraint injects (m (v_set - v_free)) and to `work`
   /// that impulse times the prescribed velocity: the work done by a moving wall (zero for fixed ones).
   void apply(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass = nullptr,
@@ -106,6 +107,7 @@ class VelocityConditions {
   std::vector<Face> faces_;         // the one-sided faces
   std::vector<char> touching_;      // per node (every field): a body touches a one-sided face there
   mutable std::vector<char> held_;  // per entry: this step's one-sided decision (apply() caches it)
+  mutable std::vector<double> free_;  // apply()'s scratch: each condition's component before it
   Grid<D> grid_;
   int fields_ = 1;
 };

@@ -20,7 +20,7 @@ using json = nlohmann::json;
 constexpr const char* kFormat = "matpoint checkpoint";
 // time, step, 3 energies, momentum[3], impulse[3], min J, rms dv, grid momentum difference[3],
 // checkerboard velocity, grid rms velocity, hourglass energy
-constexpr std::size_t kSampleColumns = 20;
+constexpr std::size_t kSampleColumns = 21;
 constexpr std::size_t kBodyColumns =
     12;  // kinetic, strain, mass, momentum[3], centre-of-mass velocity[3], position[3]
 
@@ -76,7 +76,8 @@ std::vector<double> history_rows(const History& history) {
                                         s.checkerboard_velocity,
                                         s.grid_rms_velocity,
                                         s.hourglass_energy,
-                                        s.friction_work};
+                                        s.friction_work,
+                                        s.dt};
     out.insert(out.end(), row, row + kSampleColumns);
     for (int b = 0; b < history.body_count; ++b) {
       out.insert(out.end(), {s.body_kinetic[b], s.body_strain[b], s.body_mass[b]});
@@ -103,6 +104,7 @@ std::vector<HistorySample> history_samples(const std::vector<double>& rows, std:
     s.grid_momentum_difference = {x[13], x[14], x[15]};
     s.checkerboard_velocity = x[16], s.grid_rms_velocity = x[17], s.hourglass_energy = x[18];
     s.friction_work = x[19];
+    s.dt = x[20];
     for (int b = 0; b < bodies; ++b) {
       const double* y = x + kSampleColumns + kBodyColumns * static_cast<std::size_t>(b);
       s.body_kinetic.push_back(y[0]);
@@ -246,6 +248,7 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   w.write("particles/corners", corners, {h(ps.corners.size()), ParticleSet<D>::kCorners, D});
 
   w.write("simulation/time", sim.time);
+  w.write("simulation/last_dt", sim.last_dt);
   w.write("simulation/step", std::int64_t{sim.step});
   w.write("simulation/external_work", sim.external_work);
   w.write("simulation/friction_work", sim.friction_work);
@@ -309,6 +312,7 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
       for (int a = 0; a < D; ++a) ps.corners[p][k][a] = corners[(p * ParticleSet<D>::kCorners + k) * D + a];
 
   sim.time = r.number("simulation/time");
+  sim.last_dt = r.number("simulation/last_dt");
   sim.step = r.integer("simulation/step");
   sim.external_work = r.number("simulation/external_work");
   sim.friction_work = r.number("simulation/friction_work");

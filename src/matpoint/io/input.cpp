@@ -78,10 +78,34 @@ std::string format_number(double x) {
   return out.str();
 }
 
+/// The text itself, or its first kMaxValueChars characters and "...": every piece of the input
+/// echoed in a message (a value, a key, a token the JSON parser stopped at) is cut this way.
+std::string cut(std::string_view text) {
+  if (text.size() <= kMaxValueChars) return std::string(text);
+  return std::string(text.substr(0, kMaxValueChars)) + "...";
+}
+
 std::string dump_value(const json& j) {
-  std::string text = j.dump();
-  if (text.size() > kMaxValueChars) text.replace(kMaxValueChars, std::string::npos, "...");
-  return text;
+  // A huge value is dumped whole first: bounded by the input's size, which the reader holds anyway.
+  return cut(j.dump());
+}
+
+/// nlohmann's parse error without its "[json.exception...] " prefix and with the token it quotes
+/// ("last read: '...'", which can be a whole unterminated comment or a 32 MB number) cut.
+std::string parse_error_text(std::string what) {
+  if (const auto end = what.find("] "); what.starts_with("[json.exception") && end != std::string::npos)
+    what = what.substr(end + 2);
+  const std::string_view marker = "last read: '";
+  if (const auto start = what.find(marker); start != std::string::npos) {
+    const auto token = start + marker.size();
+    const auto close = what.rfind('\'');
+    const auto length = close != std::string::npos && close >= token ? close - token : what.size() - token;
+    what = what.substr(0, token) + cut(std::string_view(what).substr(token, length)) +
+           (close != std::string::npos && close >= token ? what.substr(close) : "");
+  }
+  // The parser's own words are short; this bounds anything else it might quote.
+  if (what.size() > 4 * kMaxValueChars) what = what.substr(0, 4 * kMaxValueChars) + "...";
+  return what;
 }
 
 template <class Range>
@@ -173,11 +197,16 @@ constexpr std::array<Named<ContactNormals>, 3> kContactNormals{
      {"logistic_regression", ContactNormals::Logistic}}};
 constexpr std::array<Named<ContactFmpmMethod>, 2> kContactFmpmMethods{
     {{"net", ContactFmpmMethod::Net}, {"evolving", ContactFmpmMethod::Evolving}}};
+constexpr std::array<Named<CheckKind>, 3> kCheckKinds{{{"verification", CheckKind::Verification},
+                                                       {"regression", CheckKind::Regression},
+                                                       {"guard", CheckKind::Guard}}};
 constexpr std::array<Named<bool>, 2> kContactFields{{{"bodies", false}, {"materials", true}}};
 constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
     {{"log_j", NeoHookeanVolumetric::LogJ}, {"half_j_squared", NeoHookeanVolumetric::HalfJSquared}}};
-constexpr std::array<Named<BodyShape>, 3> kShapes{
-    {{"box", BodyShape::Box}, {"disk", BodyShape::Disk}, {"polygon", BodyShape::Polygon}}};
+constexpr std::array<Named<BodyShape>, 4> kShapes{{{"box", BodyShape::Box},
+                                                   {"disk", BodyShape::Disk},
+                                                   {"sphere", BodyShape::Disk},  // 3-D only
+                                                   {"polygon", BodyShape::Polygon}}};
 constexpr std::array<Named<ConditionKind>, 4> kConditionKinds{{{"fixed", ConditionKind::Fixed},
                                                                {"slip", ConditionKind::Slip},
                                                                {"velocity", ConditionKind::Velocity},
@@ -230,11 +259,56 @@ class Issues {
   void add(std::string path, std::string value, std::string expected) {
     list_.push_back({std::move(path), std::move(value), std::move(expected)});
   }
+
+  /// An unknown key `key` of the object at `parent`: an issue now; where the key does belong is
+  /// added by hint_misplaced_keys() once every object's keys are known.
+  void add_unknown_key(const std::string& parent, const std::string& key, std::string value,
+                       std::string expected) {
+    unknown_.push_back({list_.size(), parent, key});
+    add(parent.empty() ? cut(key) : parent + "." + cut(key), std::move(value), std::move(expected));
+  }
+
+  /// The keys the object at `path` allows (every object the reader looked at, present or not).
+  void know_keys(const std::string& path, const std::vector<std::string_view>& keys) {
+    for (const auto& key : keys) known_.emplace_back(path, key);
+  }
+
+  /// "gravity belongs under loads": an unknown key that another object of the input allows.
+  void hint_misplaced_keys() {
+    for (const auto& u : unknown_) {
+      std::vector<std::string> places;
+      for (const auto& [path, key] : known_) {
+        if (key != u.key || path == u.parent) continue;
+        const std::string place = path.empty() ? "the top level" : generic_path(path);
+        if (std::find(places.begin(), places.end(), place) == places.end()) places.push_back(place);
+      }
+      if (!places.empty())
+        list_[u.index].expected += "; " + cut(u.key) + " belongs under " + join(places, false);
+    }
+  }
   [[nodiscard]] std::size_t size() const { return list_.size(); }
   [[nodiscard]] bool empty() const { return list_.empty(); }
   [[nodiscard]] std::vector<InputIssue> take() { return std::move(list_); }
 
  private:
+  struct UnknownKey {
+    std::size_t index;  // in list_
+    std::string parent, key;
+  };
+
+  /// "bodies[3].shape" -> "bodies[].shape": a place in any element of an array.
+  static std::string generic_path(const std::string& path) {
+    std::string out;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      out += path[i];
+      if (path[i] == '[')
+        while (i + 1 < path.size() && path[i + 1] != ']') ++i;
+    }
+    return out;
+  }
+
+  std::vector<UnknownKey> unknown_;
+  std::vector<std::pair<std::string, std::string_view>> known_;
   std::vector<InputIssue> list_;
 };
 
@@ -257,7 +331,7 @@ class Value {
       const auto it = j_->find(std::string(key));
       if (it != j_->end()) child = &*it;
     }
-    return {child, path_.empty() ? std::string(key) : path_ + "." + std::string(key), *issues_, required};
+    return {child, path_.empty() ? cut(key) : path_ + "." + cut(key), *issues_, required};
   }
 
   /// Element `index` of this value, which must be a present array.
@@ -395,9 +469,12 @@ class Object {
  public:
   Object(const Value& value, std::initializer_list<std::string_view> keys)
       : value_(value), keys_(keys), valid_(value.expect_object("an object with the keys: " + keys_text())) {
+    value.issues().know_keys(value.path(), keys_);
     if (!valid_) return;
     for (const auto& [key, child] : value.get().items())
-      if (!allowed(key)) value.member(key, false).fail("one of the keys: " + keys_text());
+      if (!allowed(key))
+        value.issues().add_unknown_key(value.path(), key, dump_value(child),
+                                       "one of the keys: " + keys_text());
   }
 
   [[nodiscard]] bool valid() const { return valid_; }
@@ -483,7 +560,8 @@ class RepeatedKeyFinder {
   [[nodiscard]] std::string path() const {
     std::string out;
     for (const auto& frame : frames_)
-      out += frame.is_object ? (out.empty() ? "" : ".") + frame.key : "[" + std::to_string(frame.index) + "]";
+      out += frame.is_object ? (out.empty() ? "" : ".") + cut(frame.key)
+                             : "[" + std::to_string(frame.index) + "]";
     return out;
   }
 
@@ -512,10 +590,8 @@ std::optional<json> parse_json(const std::string& text, Issues& issues) {
                "an input nested at most " + std::to_string(kMaxJsonDepth) + " levels deep");
     return std::nullopt;
   } catch (const json::exception& e) {
-    std::string what = e.what();  // "[json.exception.parse_error.101] parse error at line 3, column 7: ..."
-    if (const auto end = what.find("] "); what.starts_with("[json.exception") && end != std::string::npos)
-      what = what.substr(end + 2);
-    issues.add("(json)", what, "valid JSON (comments allowed)");
+    // "[json.exception.parse_error.101] parse error at line 3, column 7: ...; last read: '...'"
+    issues.add("(json)", parse_error_text(e.what()), "valid JSON (comments allowed)");
     return std::nullopt;
   }
 }
@@ -529,19 +605,20 @@ class SpecReader {
 
   Spec read(const json& root_json) {
     const Value root(&root_json, "", issues_, true);
-    const Object top(root, {"title", "grid", "materials", "bodies", "boundary_conditions", "loads", "solver",
-                            "output", "checks", "contact"});
+    const Object top(root, {"title", "units", "grid", "materials", "bodies", "boundary_conditions", "loads",
+                            "solver", "output", "checks", "contact"});
     if (!top.valid()) return std::move(spec_);
     set_if(spec_.title, top.optional("title").string());
+    read_units(Object(top.optional("units"), {"length", "time", "mass", "stress", "energy"}));
     read_grid(Object(top.required("grid"), {"dim", "min", "max", "cell_size"}));
     read_materials(top.required("materials"));
     read_bodies(top.required("bodies"));
     read_conditions(top.optional("boundary_conditions"));
     read_loads(Object(top.optional("loads"), {"gravity"}));
     read_solver(Object(top.required("solver"),
-                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
+                       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "basis", "shape",
                         "mapping", "mls", "deformation_update", "dt", "courant", "end_time", "max_steps",
-                        "mass_tolerance", "artificial_viscosity"}));
+                        "mass_tolerance", "constrain_old_velocity", "artificial_viscosity", "max_energy_growth"}));
     check_one_sided_transfer(top.optional("boundary_conditions"));
     read_output(Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields",
                                                 "checkpoint", "probes"}));
@@ -553,6 +630,12 @@ class SpecReader {
   }
 
  private:
+  // --- units: names only, for the plots' axes (summary.json echoes them); nothing is converted ---
+
+  void read_units(const Object& units) {
+    for (const char* key : {"length", "time", "mass", "stress", "energy"}) (void)units.optional(key).string();
+  }
+
   // --- grid ---
 
   void read_grid(const Object& grid) {
@@ -845,7 +928,8 @@ class SpecReader {
   }
 
   void read_shape(const Value& v, BodySpec& out) const {
-    if (!v.expect_object("an object with \"type\": " + join(std::array{"box", "disk", "polygon"}, true)))
+    if (!v.expect_object("an object with \"type\": " +
+                         join(std::array{"box", "disk", "sphere", "polygon"}, true)))
       return;
     const std::size_t issues_before = issues_.size();
     const Value type = v.member("type", true);
@@ -856,8 +940,11 @@ class SpecReader {
       case BodyShape::Box:
         read_box(Object(v, {"type", "min", "max"}), out);
         break;
-      case BodyShape::Disk:
-        read_disk(Object(v, {"type", "center", "radius"}), out);
+      case BodyShape::Disk:  // "disk" in 1-D and 2-D (and, as before, in 3-D), "sphere" in 3-D
+        if (dim_ != 0 && dim_ != 3 && type.get() == "sphere")
+          type.fail("\"disk\" (\"sphere\" needs grid.dim 3)");
+        else
+          read_disk(Object(v, {"type", "center", "radius"}), out);
         break;
       case BodyShape::Polygon:
         if (dim_ != 0 && dim_ != 2)
@@ -933,7 +1020,26 @@ class SpecReader {
 
   void check_inside_grid(const Value& shape, const BodySpec& body) const {
     const auto [lo, hi] = bounding_box(body, dim_);
-    if (!box_inside_grid(lo, hi, kInsideTolerance)) shape.fail("a shape inside the grid " + grid_box_text());
+    if (!box_inside_grid(lo, hi, kInsideTolerance))
+      shape.fail("a shape inside the grid " + grid_box_text() + "; it " + overhang_text(lo, hi));
+  }
+
+  /// "reaches 0.2 beyond the x+ side (x = 1.2 > grid.max[0] = 1)": each side the box [lo, hi] crosses.
+  [[nodiscard]] std::string overhang_text(const Triple& lo, const Triple& hi) const {
+    const GridSpec& g = spec_.grid;
+    std::vector<std::string> sides;
+    for (int a = 0; a < dim_; ++a) {
+      const std::string axis(1, "xyz"[a]), index = "[" + std::to_string(a) + "]";
+      if (lo[a] < g.min[a])
+        sides.push_back(format_number(g.min[a] - lo[a]) + " beyond the " + axis + "- side (" + axis + " = " +
+                        format_number(lo[a]) + " < grid.min" + index + " = " + format_number(g.min[a]) + ")");
+      if (hi[a] > g.max[a])
+        sides.push_back(format_number(hi[a] - g.max[a]) + " beyond the " + axis + "+ side (" + axis + " = " +
+                        format_number(hi[a]) + " > grid.max" + index + " = " + format_number(g.max[a]) + ")");
+    }
+    std::string out = "reaches ";
+    for (std::size_t i = 0; i < sides.size(); ++i) out += (i == 0 ? "" : " and ") + sides[i];
+    return out;
   }
 
   /// [lo, hi] lies in the grid's box, widened by `relative_tolerance` of its size.
@@ -1192,7 +1298,14 @@ class SpecReader {
       out.flip_fraction = flip_fraction.number(kUnitInterval).value_or(0.99);
     else if (flip_fraction.present() && (transfer || !s.has("transfer")))
       flip_fraction.fail("no flip_fraction unless transfer is \"blend\"");
-    set_if(out.shape, s.optional("shape").choice(kShapeKinds));
+    // Without a basis: quadratic B-splines, the user guide's recommendation (no cell-crossing
+    // noise); linear under mapping "impm", whose cell quadrature needs it (Gong 2015 §5.3).
+    const bool impm = s.optional("mapping").present() && s.optional("mapping").get() == "impm";
+    out.shape = impm ? ShapeKind::Linear : ShapeKind::BSpline2;
+    set_if(out.shape, s.optional("basis").choice(kShapeKinds));
+    if (s.has("shape"))  // the key's old name, easily confused with bodies[].shape (a body's geometry)
+      s.optional("shape").fail(
+          "no key shape here: the basis functions are solver.basis (renamed from solver.shape)");
     read_mapping(s, out);
     set_if(out.deformation_update, s.optional("deformation_update").choice(kDeformationUpdates));
     out.dt = s.optional("dt").number(kPositive);
@@ -1204,7 +1317,33 @@ class SpecReader {
     set_if(out.end_time, s.required("end_time").number(kPositive));
     set_if(out.max_steps, s.optional("max_steps").integer(0));
     set_if(out.mass_tolerance, s.optional("mass_tolerance").number({0, 1, false, true}));
+    read_constrain_old_velocity(s.optional("constrain_old_velocity"), out);
+    read_energy_guard(s.optional("max_energy_growth"), out);
     read_artificial_viscosity(Object(s.optional("artificial_viscosity"), {"linear", "quadratic"}), out);
+  }
+
+  /// solver.max_energy_growth: a number > 0 (explicit/energy_guard.hpp), or "off".
+  static void read_energy_guard(const Value& growth, SolverSpec& out) {
+    if (!growth.present()) return;
+    const json& j = growth.get();
+    if (j.is_string() && j.get_ref<const std::string&>() == "off")
+      out.max_energy_growth.reset();
+    else if (j.is_number() && j.get<double>() > 0 && std::isfinite(j.get<double>()))
+      out.max_energy_growth = j.get<double>();
+    else
+      growth.fail("a number > 0, or \"off\"");
+  }
+
+  /// solver.constrain_old_velocity: Gong 2015's wall treatment (extraction A24): the velocity
+  /// conditions also hold on the old node velocities v(1), so a = (v+ - v) / dt and the FLIP
+  /// increment carry no wall reaction. The FMPM and XPIC loops apply the conditions themselves.
+  static void read_constrain_old_velocity(const Value& v, SolverSpec& out) {
+    set_if(out.constrain_old_velocity, v.boolean());
+    if (out.constrain_old_velocity &&
+        (out.transfer == VelocityTransfer::FMPM || out.transfer == VelocityTransfer::XPIC))
+      v.fail(
+          "false with transfer \"fmpm\" or \"xpic\" (their loops apply the velocity conditions to "
+          "every increment, Nairn 2026 Table 2)");
   }
 
   /// solver.artificial_viscosity: {"linear": A1, "quadratic": A2}, NairnMPM's defaults 0.2 and 2.0.
@@ -1225,8 +1364,8 @@ class SpecReader {
     }
     if (out.mapping == Mapping::IMPM && out.shape != ShapeKind::Linear)
       mapping.fail(
-          "\"impm\" with shape \"linear\" (the cell quadrature uses the bilinear N_i), or "
-          "\"mls_velocity\" for the other shapes");
+          "\"impm\" with basis \"linear\" (the cell quadrature uses the bilinear N_i), or "
+          "\"mls_velocity\" for the other bases");
     if (out.transfer == VelocityTransfer::FMPM || out.transfer == VelocityTransfer::XPIC)
       mapping.fail("\"mpm\" with transfer \"fmpm\" or \"xpic\" (their passes re-map the momentum by mass)");
     const Object mls(mls_value, {"degree", "quadrature", "cell_volume"});
@@ -1292,7 +1431,7 @@ class SpecReader {
     for (int a = 0; a < dim_; ++a)
       if (spec_.grid.cells[a] < fewest) {
         issues_.add("grid.cell_size", format_number(spec_.grid.cell_size[a]),
-                    "at least " + std::to_string(fewest) + " cells per direction for solver.shape \"" +
+                    "at least " + std::to_string(fewest) + " cells per direction for solver.basis \"" +
                         std::string(name_of(kShapeKinds, spec_.solver.shape)) + "\" (its stencil is " +
                         std::to_string(fewest + 1) + " nodes wide); the grid has " +
                         std::to_string(spec_.grid.cells[a]) + " along axis " + std::to_string(a));
@@ -1369,7 +1508,7 @@ class SpecReader {
       if (const auto x = position.vector(dim_)) {
         probe.position = *x;
         if (grid_ok_ && !box_inside_grid(*x, *x, 0.0))
-          position.fail("a point inside the grid " + grid_box_text());
+          position.fail("a point inside the grid " + grid_box_text() + "; it " + overhang_text(*x, *x));
       }
       spec_.output.probes.push_back(probe);
     }
@@ -1387,7 +1526,7 @@ class SpecReader {
 
   void read_checks(const Value& list) {
     for (const auto& item : list.elements("an array of check objects")) {
-      const Object c(item, {"name", "measure", "expected", "tolerance", "source"});
+      const Object c(item, {"name", "measure", "expected", "tolerance", "source", "kind"});
       if (!c.valid()) continue;
       CheckSpec check;
       set_if(check.name, c.required("name").string());
@@ -1395,6 +1534,7 @@ class SpecReader {
       set_if(check.expected, c.required("expected").number());
       set_if(check.tolerance, c.required("tolerance").number(kNonNegative));
       set_if(check.source, c.required("source").string());
+      set_if(check.kind, c.optional("kind").choice(kCheckKinds));
       spec_.checks.push_back(check);
     }
   }
@@ -1510,7 +1650,7 @@ class SpecReader {
     if (s.transfer == VelocityTransfer::FMPM && s.fmpm.recursion == FmpmRecursion::Binomial)
       v.fail("no contact with fmpm.recursion \"binomial\" (eq. 4 has no per-increment contact step)");
     if (s.shape == ShapeKind::CPDI2)
-      v.fail("no contact with solver.shape \"cpdi2\" (tracked corners); use \"cpdi1\"");
+      v.fail("no contact with solver.basis \"cpdi2\" (tracked corners); use \"cpdi1\"");
     if (s.mapping != Mapping::MPM) v.fail("no contact with solver.mapping other than \"mpm\"");
   }
 
@@ -1528,22 +1668,45 @@ Spec parse_spec(const std::string& json_text) {
   std::optional<json> root = parse_json(json_text, issues);
   if (!root) throw InputError(issues.take());
   Spec spec = SpecReader(issues).read(*root);
+  issues.hint_misplaced_keys();
   if (!issues.empty()) throw InputError(issues.take());
   check_memory(spec);  // refuse, with the estimate, what would end in an out-of-memory kill
   spec.echo = std::move(*root);
   return spec;
 }
 
-Spec load_spec(const std::filesystem::path& file) {
-  std::error_code error;
-  const bool is_file = std::filesystem::is_regular_file(file, error);
-  std::ifstream in(file, std::ios::binary);
-  if (!is_file || !in) {
-    const char* found = !std::filesystem::exists(file, error)        ? "no such file"
-                        : std::filesystem::is_directory(file, error) ? "a folder"
-                                                                     : "a file that cannot be read";
-    throw InputError({{file.string(), found, "a readable JSON input file"}});
+namespace {
+
+/// What a path that is not a regular file is, for the message.
+const char* file_kind(std::filesystem::file_type type) {
+  switch (type) {
+    case std::filesystem::file_type::not_found:
+      return "no such file";
+    case std::filesystem::file_type::directory:
+      return "a folder";
+    case std::filesystem::file_type::fifo:
+      return "a named pipe";
+    case std::filesystem::file_type::socket:
+      return "a socket";
+    case std::filesystem::file_type::character:
+    case std::filesystem::file_type::block:
+      return "a device";
+    default:
+      return "not a regular file";
   }
+}
+
+}  // namespace
+
+Spec load_spec(const std::filesystem::path& file) {
+  // The type is tested before the file is opened: opening a named pipe with no writer would wait
+  // for one forever, and a device can be endless.
+  std::error_code error;
+  const auto type = std::filesystem::status(file, error).type();
+  if (type != std::filesystem::file_type::regular)
+    throw InputError({{file.string(), file_kind(type), "a readable JSON input file"}});
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError({{file.string(), "a file that cannot be read", "a readable JSON input file"}});
   std::ostringstream text;
   text << in.rdbuf();
   return parse_spec(text.str());

@@ -12,8 +12,9 @@ struct ParticleFieldInfo {
   std::string_view content;
 };
 
-inline constexpr std::array<ParticleFieldInfo, 15> kParticleFields{{
+inline constexpr std::array<ParticleFieldInfo, 16> kParticleFields{{
     {"velocity", "particle velocity"},
+    {"displacement", "displacement u = x - X from the initial position"},
     {"stress", "Cauchy stress (3 x 3; in 2-D with the plane-strain sigma_zz)"},
     {"deformation_gradient", "deformation gradient F"},
     {"strain", "Green-Lagrange strain E = (F^T F - I) / 2"},
@@ -23,7 +24,7 @@ inline constexpr std::array<ParticleFieldInfo, 15> kParticleFields{{
     {"material", "material index (position in materials)"},
     {"body", "body index (position in bodies)"},
     {"id", "particle number"},
-    {"state", "material history variables, where the model has any"},
+    {"state", "material history variables, where the model has any (components: docs/output.md)"},
     {"pressure", "-tr(sigma) / 3 of the 3 x 3 Cauchy stress (compression positive)"},
     {"von_mises", "von Mises stress sqrt(3/2 s : s), s = dev(sigma) of the 3 x 3 Cauchy stress"},
     {"plastic_strain", "equivalent plastic strain (plastic materials; 0 elsewhere)"},

@@ -162,11 +162,15 @@ struct SolverSpec {
   double courant = 0.5;      // Courant number with the largest material wave speed
   double end_time = 0;
   long max_steps = 0;  // 0: no limit
-  double mass_tolerance =
-      1e-12;  // nodes lighter than this fraction of the largest particle mass are inactive
+  // Nodes at or below this fraction of the largest particle mass are inactive. 0 (the default):
+  // every node a particle reaches is active, which conserves momentum exactly (docs/input.md).
+  double mass_tolerance = 0.0;
   // Gong 2015 extraction A24: the velocity conditions also hold on the old node velocities, so the
-  // FLIP increment carries no boundary reaction (built-in verification problems only; not an input key).
+  // FLIP increment carries no boundary reaction (input key solver.constrain_old_velocity, default false).
   bool constrain_old_velocity = false;
+  // The energy-growth guard (explicit/energy_guard.hpp): stop when the energy balance rises by
+  // more than this many times the energy scale; empty: off ("off" in the input).
+  std::optional<double> max_energy_growth = 1.0;
   // Artificial bulk viscosity coefficients A1 (linear), A2 (quadratic); zero: off.
   double av_linear = 0.0, av_quadratic = 0.0;
 };
@@ -193,7 +197,15 @@ struct OutputSpec {
   std::vector<std::string> fields;  // particle fields written to .vtu; empty = all
   CheckpointSpec checkpoint;
   std::vector<ProbeSpec> probes;
+  // Steps are shortened to land exactly on the every_time output times (not an input key: the
+  // stability scan turns it off, so that every step runs at the scanned Courant number).
+  bool exact_times = true;
 };
+
+/// What a check's reference is (docs/verification.md counts them apart): independent of the code
+/// (analytic, a paper, a converged finer run), a value of an earlier run of the code, or a guard
+/// that catches only gross failure.
+enum class CheckKind { Verification, Regression, Guard };
 
 /// A reference value the run compares itself against (summary.json "checks").
 struct CheckSpec {
@@ -202,6 +214,7 @@ struct CheckSpec {
   double expected = 0;
   double tolerance = 0;  // pass when |measured - expected| <= tolerance
   std::string source;
+  CheckKind kind = CheckKind::Verification;
 };
 
 /// Multimaterial contact (Nairn 2026 §3.2; docs/theory/contact.md): each body (or material) gets

@@ -1,5 +1,7 @@
 #include "matpoint/io/vtk_writer.hpp"
 
+#include <zlib.h>
+
 #include "matpoint/io/atomic_file.hpp"
 #include "matpoint/material/hencky_plasticity.hpp"
 
@@ -10,48 +12,88 @@
 #include <cstring>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
+
+#include "matpoint/io/atomic_file.hpp"
 
 namespace matpoint {
 
 namespace {
 
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static constexpr char table[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const unsigned b0 = bytes[i];
-    const unsigned b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
-    const unsigned b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
-    out += table[b0 >> 2];
-    out += table[((b0 & 3) << 4) | (b1 >> 4)];
-    out += i + 1 < bytes.size() ? table[((b1 & 15) << 2) | (b2 >> 6)] : '=';
-    out += i + 2 < bytes.size() ? table[b2 & 63] : '=';
+/// The binary part of a .vtu file in VTK's appended format: every DataArray is a block of
+/// zlib-compressed bytes behind a UInt64 header [number of blocks, block size, size of the last
+/// block, compressed size of each block] (VTK's vtkZLibDataCompressor layout; 64-bit sizes do not
+/// wrap for arrays above 4 GiB, as 32-bit ones would). Blocks are compressed in parallel.
+class AppendedData {
+ public:
+  static constexpr std::size_t kBlock = 1 << 16;  // uncompressed bytes per block
+  static constexpr int kLevel = 1;                // zlib level: see docs/output.md "Particle files"
+
+  /// The <DataArray .../> element of `values`, whose bytes are appended here.
+  template <class T>
+  std::string array(const std::string& name, const char* type, int components, const std::vector<T>& values,
+                    const std::vector<std::string>& component_names = {}) {
+    std::ostringstream out;
+    out << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
+        << components << "\"";
+    for (std::size_t c = 0; c < component_names.size(); ++c)
+      out << " ComponentName" << c << "=\"" << component_names[c] << "\"";
+    out << " format=\"appended\" offset=\"" << bytes_.size() << "\"/>\n";
+    append(reinterpret_cast<const unsigned char*>(values.data()), values.size() * sizeof(T));
+    return out.str();
   }
+
+  [[nodiscard]] const std::string& bytes() const { return bytes_; }
+
+ private:
+  void append(const unsigned char* data, std::size_t size) {
+    const std::size_t blocks = (size + kBlock - 1) / kBlock;
+    std::vector<std::string> compressed(blocks);
+#pragma omp parallel for schedule(dynamic) if (blocks > 1)
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t length = std::min(kBlock, size - b * kBlock);
+      uLongf out_length = compressBound(static_cast<uLong>(length));
+      compressed[b].resize(out_length);
+      const int status = compress2(reinterpret_cast<Bytef*>(compressed[b].data()), &out_length,
+                                   data + b * kBlock, static_cast<uLong>(length), kLevel);
+      if (status != Z_OK) compressed[b].clear();  // reported below, outside the parallel loop
+      compressed[b].resize(status == Z_OK ? out_length : 0);
+    }
+    std::vector<std::uint64_t> header{blocks, kBlock, size % kBlock};
+    for (const auto& c : compressed) {
+      if (c.empty()) throw std::runtime_error("zlib could not compress a .vtu data array");
+      header.push_back(c.size());
+    }
+    bytes_.append(reinterpret_cast<const char*>(header.data()), header.size() * sizeof(std::uint64_t));
+    for (const auto& c : compressed) bytes_ += c;
+  }
+
+  std::string bytes_;
+};
+
+/// A whole .vtu file: the XML `body` (the <Piece> with its DataArray elements) and the data.
+std::string vtu_file(const std::string& piece, const AppendedData& data) {
+  std::string out =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
+      "compressor=\"vtkZLibDataCompressor\">\n"
+      "  <UnstructuredGrid>\n" +
+      piece + "  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
+  out += data.bytes();
+  out += "\n  </AppendedData>\n</VTKFile>\n";
   return out;
 }
 
-/// One base64 binary DataArray: a UInt32 byte count followed by the values (VTK's default header).
-template <class T> std::string data_array(const std::string& name, const char* type, int components,
-                                          const std::vector<T>& values) {
-  std::vector<unsigned char> bytes(sizeof(std::uint32_t) + values.size() * sizeof(T));
-  const auto count = static_cast<std::uint32_t>(values.size() * sizeof(T));
-  std::memcpy(bytes.data(), &count, sizeof count);
-  if (!values.empty()) std::memcpy(bytes.data() + sizeof count, values.data(), values.size() * sizeof(T));
-  std::ostringstream out;
-  out << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\"" << components
-      << "\" format=\"binary\">\n          " << base64(bytes) << "\n        </DataArray>\n";
-  return out.str();
-}
-
-template <int D> std::vector<double> padded_vectors(const std::vector<Vec<D>>& v) {
+template <int D>
+std::vector<double> padded_vectors(const std::vector<Vec<D>>& v) {
   std::vector<double> out(3 * v.size(), 0.0);
   for (std::size_t p = 0; p < v.size(); ++p)
     for (int a = 0; a < D; ++a) out[3 * p + a] = v[p][a];
   return out;
 }
 
-template <int D, class Fn> std::vector<double> padded_tensors(std::size_t n, Fn&& tensor_of) {
+template <int D, class Fn>
+std::vector<double> padded_tensors(std::size_t n, Fn&& tensor_of) {
   std::vector<double> out(9 * n, 0.0);
   for (std::size_t p = 0; p < n; ++p) {
     const Mat<D> t = tensor_of(p);
@@ -61,7 +103,8 @@ template <int D, class Fn> std::vector<double> padded_tensors(std::size_t n, Fn&
   return out;
 }
 
-template <class Fn> std::vector<double> scalars(std::size_t n, Fn&& value_of) {
+template <class Fn>
+std::vector<double> scalars(std::size_t n, Fn&& value_of) {
   std::vector<double> out(n);
   for (std::size_t p = 0; p < n; ++p) out[p] = value_of(p);
   return out;
@@ -101,45 +144,55 @@ bool wanted(const std::vector<std::string>& fields, const std::string& name) {
 
 }  // namespace
 
-template <int D> std::string particles_vtu(const ParticleSet<D>& ps, const std::vector<std::string>& fields) {
+template <int D>
+std::string particles_vtu(const ParticleSet<D>& ps, const std::vector<std::string>& fields,
+                          const std::vector<Vec<D>>* initial_position,
+                          const std::vector<std::string>& state_names) {
   const std::size_t n = ps.size();
+  AppendedData data;
   std::ostringstream point_data;
-  if (wanted(fields, "velocity")) point_data << data_array("velocity", "Float64", 3, padded_vectors<D>(ps.v));
+  if (wanted(fields, "velocity")) point_data << data.array("velocity", "Float64", 3, padded_vectors<D>(ps.v));
+  if (wanted(fields, "displacement") && initial_position != nullptr) {  // u = x - X (X by particle id)
+    std::vector<Vec<D>> u(n);
+    for (std::size_t p = 0; p < n; ++p) u[p] = ps.x[p] - (*initial_position)[ps.id[p]];
+    point_data << data.array("displacement", "Float64", 3, padded_vectors<D>(u));
+  }
   if (wanted(fields, "stress"))
-    point_data << data_array("stress", "Float64", 9, stress_3x3(ps));
+    point_data << data.array("stress", "Float64", 9, stress_3x3(ps));
   if (wanted(fields, "deformation_gradient"))
-    point_data << data_array("deformation_gradient", "Float64", 9,
+    point_data << data.array("deformation_gradient", "Float64", 9,
                              padded_tensors<D>(n, [&](std::size_t p) { return ps.F[p]; }));
   if (wanted(fields, "strain"))  // Green-Lagrange strain E = (F^T F - I) / 2
-    point_data << data_array("strain", "Float64", 9, padded_tensors<D>(n, [&](std::size_t p) {
+    point_data << data.array("strain", "Float64", 9, padded_tensors<D>(n, [&](std::size_t p) {
                                return Mat<D>(0.5 * (ps.F[p].transpose() * ps.F[p] - Mat<D>::Identity()));
                              }));
   if (wanted(fields, "jacobian"))
-    point_data << data_array("jacobian", "Float64", 1, scalars(n, [&](std::size_t p) { return ps.F[p].determinant(); }));
-  if (wanted(fields, "mass")) point_data << data_array("mass", "Float64", 1, ps.mass);
+    point_data << data.array("jacobian", "Float64", 1,
+                             scalars(n, [&](std::size_t p) { return ps.F[p].determinant(); }));
+  if (wanted(fields, "mass")) point_data << data.array("mass", "Float64", 1, ps.mass);
   if (wanted(fields, "volume"))
-    point_data << data_array("volume", "Float64", 1, scalars(n, [&](std::size_t p) { return ps.volume(p); }));
-  if (wanted(fields, "material")) point_data << data_array("material", "Int32", 1, ps.material);
-  if (wanted(fields, "body")) point_data << data_array("body", "Int32", 1, ps.body);
+    point_data << data.array("volume", "Float64", 1, scalars(n, [&](std::size_t p) { return ps.volume(p); }));
+  if (wanted(fields, "material")) point_data << data.array("material", "Int32", 1, ps.material);
+  if (wanted(fields, "body")) point_data << data.array("body", "Int32", 1, ps.body);
   if (wanted(fields, "id")) {
     std::vector<std::int64_t> ids(ps.id.begin(), ps.id.end());
-    point_data << data_array("id", "Int64", 1, ids);
+    point_data << data.array("id", "Int64", 1, ids);
   }
   if (wanted(fields, "state") && ps.state_stride > 0)
-    point_data << data_array("state", "Float64", ps.state_stride, ps.state);
-  if (wanted(fields, "pressure"))
-    point_data << data_array("pressure", "Float64", 1, scalars(n, [&](std::size_t p) { return pressure(ps, p); }));
+    point_data << data.array("state", "Float64", ps.state_stride, ps.state, state_names);
+  if (wanted(fields, "pressure"))  // p = -tr(sigma) / 3 of the 3 x 3 stress (sigma_zz in plane strain)
+    point_data << data.array("pressure", "Float64", 1, scalars(n, [&](std::size_t p) { return pressure(ps, p); }));
   if (wanted(fields, "von_mises"))
-    point_data << data_array("von_mises", "Float64", 1, scalars(n, [&](std::size_t p) { return von_mises(ps, p); }));
+    point_data << data.array("von_mises", "Float64", 1, scalars(n, [&](std::size_t p) { return von_mises(ps, p); }));
   if (wanted(fields, "plastic_strain"))
-    point_data << data_array("plastic_strain", "Float64", 1, scalars(n, [&](std::size_t p) {
+    point_data << data.array("plastic_strain", "Float64", 1, scalars(n, [&](std::size_t p) {
                                return ps.plastic(p) ? ps.state[p * ps.state_stride + kEquivalentPlasticStrain] : 0.0;
                              }));
   if (wanted(fields, "yield_state")) {
     std::vector<std::int32_t> state(n, 0);
     for (std::size_t p = 0; p < n; ++p)
       if (ps.plastic(p)) state[p] = static_cast<std::int32_t>(ps.state[p * ps.state_stride + kYieldState]);
-    point_data << data_array("yield_state", "Int32", 1, state);
+    point_data << data.array("yield_state", "Int32", 1, state);
   }
 
   std::vector<std::int64_t> connectivity(n), offsets(n);
@@ -148,20 +201,17 @@ template <int D> std::string particles_vtu(const ParticleSet<D>& ps, const std::
     connectivity[p] = static_cast<std::int64_t>(p);
     offsets[p] = static_cast<std::int64_t>(p + 1);
   }
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n"
-      << "  <UnstructuredGrid>\n"
-      << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n"
-      << "      <PointData>\n"
-      << point_data.str() << "      </PointData>\n"
-      << "      <Points>\n"
-      << data_array("Points", "Float64", 3, padded_vectors<D>(ps.x)) << "      </Points>\n"
-      << "      <Cells>\n"
-      << data_array("connectivity", "Int64", 1, connectivity) << data_array("offsets", "Int64", 1, offsets)
-      << data_array("types", "UInt8", 1, types) << "      </Cells>\n"
-      << "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-  return out.str();
+  std::ostringstream piece;
+  piece << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n"
+        << "      <PointData>\n"
+        << point_data.str() << "      </PointData>\n"
+        << "      <Points>\n"
+        << data.array("Points", "Float64", 3, padded_vectors<D>(ps.x)) << "      </Points>\n"
+        << "      <Cells>\n"
+        << data.array("connectivity", "Int64", 1, connectivity) << data.array("offsets", "Int64", 1, offsets)
+        << data.array("types", "UInt8", 1, types) << "      </Cells>\n"
+        << "    </Piece>\n";
+  return vtu_file(piece.str(), data);
 }
 
 template <int D>
@@ -185,21 +235,19 @@ std::string domains_vtu(const std::vector<typename ParticleSet<D>::Corners>& dom
   std::vector<std::uint8_t> types(n, type);
   std::vector<std::int64_t> ids(ps.id.begin(), ps.id.begin() + static_cast<std::ptrdiff_t>(n));
   std::vector<int> bodies(ps.body.begin(), ps.body.begin() + static_cast<std::ptrdiff_t>(n));
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt32\">\n"
-      << "  <UnstructuredGrid>\n"
-      << "    <Piece NumberOfPoints=\"" << C * n << "\" NumberOfCells=\"" << n << "\">\n"
-      << "      <CellData>\n"
-      << data_array("id", "Int64", 1, ids) << data_array("body", "Int32", 1, bodies) << "      </CellData>\n"
-      << "      <Points>\n"
-      << data_array("Points", "Float64", 3, points) << "      </Points>\n"
-      << "      <Cells>\n"
-      << data_array("connectivity", "Int64", 1, connectivity) << data_array("offsets", "Int64", 1, offsets)
-      << data_array("types", "UInt8", 1, types) << "      </Cells>\n"
-      << "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-  return out.str();
+  AppendedData data;
+  std::ostringstream piece;
+  piece << "    <Piece NumberOfPoints=\"" << C * n << "\" NumberOfCells=\"" << n << "\">\n"
+        << "      <CellData>\n"
+        << data.array("id", "Int64", 1, ids) << data.array("body", "Int32", 1, bodies)
+        << "      </CellData>\n"
+        << "      <Points>\n"
+        << data.array("Points", "Float64", 3, points) << "      </Points>\n"
+        << "      <Cells>\n"
+        << data.array("connectivity", "Int64", 1, connectivity) << data.array("offsets", "Int64", 1, offsets)
+        << data.array("types", "UInt8", 1, types) << "      </Cells>\n"
+        << "    </Piece>\n";
+  return vtu_file(piece.str(), data);
 }
 
 void PvdCollection::add(double time, const std::string& dataset_file) {
@@ -222,9 +270,12 @@ void PvdCollection::write() const {
   write_file_atomically(file_, out.str());
 }
 
-template std::string particles_vtu<1>(const ParticleSet<1>&, const std::vector<std::string>&);
-template std::string particles_vtu<2>(const ParticleSet<2>&, const std::vector<std::string>&);
-template std::string particles_vtu<3>(const ParticleSet<3>&, const std::vector<std::string>&);
+template std::string particles_vtu<1>(const ParticleSet<1>&, const std::vector<std::string>&,
+                                      const std::vector<Vec<1>>*, const std::vector<std::string>&);
+template std::string particles_vtu<2>(const ParticleSet<2>&, const std::vector<std::string>&,
+                                      const std::vector<Vec<2>>*, const std::vector<std::string>&);
+template std::string particles_vtu<3>(const ParticleSet<3>&, const std::vector<std::string>&,
+                                      const std::vector<Vec<3>>*, const std::vector<std::string>&);
 template std::string domains_vtu<1>(const std::vector<ParticleSet<1>::Corners>&, const ParticleSet<1>&);
 template std::string domains_vtu<2>(const std::vector<ParticleSet<2>::Corners>&, const ParticleSet<2>&);
 template std::string domains_vtu<3>(const std::vector<ParticleSet<3>::Corners>&, const ParticleSet<3>&);

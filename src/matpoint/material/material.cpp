@@ -53,6 +53,22 @@ int state_size(const Material& m) {
       m);
 }
 
+std::vector<std::string> state_names(const Material& m) {
+  return std::visit(
+      [](const auto& model) {
+        using Model = std::decay_t<decltype(model)>;
+        std::vector<std::string> names;
+        if constexpr (requires { Model::state_names; })
+          for (const auto& name : Model::state_names) names.emplace_back(name);
+        int size = 0;
+        if constexpr (requires { Model::state_size; }) size = Model::state_size;
+        for (int i = static_cast<int>(names.size()); i < size; ++i)
+          names.push_back("state" + std::to_string(i));
+        return names;
+      },
+      m);
+}
+
 template <int D>
 void set_state_layout(const std::vector<Material>& materials, ParticleSet<D>& particles) {
   particles.state_stride = 0;

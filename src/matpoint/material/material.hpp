@@ -7,6 +7,7 @@
 // map `Yield` in the shared finite-strain frame.
 #pragma once
 
+#include <string>
 #include <variant>
 #include <vector>
 
@@ -35,6 +36,10 @@ int state_size(const Material& m);
 /// and which materials use the plastic layout (ParticleSet::plastic_material).
 template <int D>
 void set_state_layout(const std::vector<Material>& materials, ParticleSet<D>& particles);
+
+/// The names of those values (the model's `state_names`, else state0, state1, ...): the
+/// component names of the .vtu `state` array.
+std::vector<std::string> state_names(const Material& m);
 
 template <int D>
 double wave_speed(const Material& m) {

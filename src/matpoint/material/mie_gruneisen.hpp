@@ -11,6 +11,8 @@
 // the Rankine-Hugoniot energy jump e = (p0 + p1)(v0 - v1) / 2 for a single jump.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "matpoint/core/types.hpp"
@@ -26,6 +28,7 @@ struct MieGruneisen {
 
   /// History per particle: specific internal energy e and eta = 1 - J of the last update.
   static constexpr int state_size = 2;
+  static constexpr std::array<const char*, 2> state_names{"e", "eta"};  // .vtu `state` components
 
   /// The reference part p_H (1 - Gamma0 eta / 2) of the pressure.
   [[nodiscard]] double reference_pressure(double eta) const {
@@ -78,6 +81,23 @@ struct MieGruneisen {
   template <int D>
   [[nodiscard]] double wave_speed() const {
     return std::sqrt(bulk_sound_speed * bulk_sound_speed + 4.0 * shear_modulus / (3.0 * density));
+  }
+  /// The sound speed of the present state (the time step of a shocked body, Nairn 2026 §1.8):
+  /// the isentropic bulk speed c_B^2 = dp/drho|_s = J^2 / rho0 (dp_ref/deta + Gamma0 p), from
+  /// rho = rho0 / J, dp/dv|_s = dp/dv - p dp/de and dp/de = Gamma0 rho0, plus the shear part
+  /// 4 G / (3 rho) with rho = rho0 / J. At rest both give wave_speed().
+  template <int D>
+  [[nodiscard]] double wave_speed_at(const Mat<D>& F, const double* state) const {
+    const double J = F.determinant(), eta = 1.0 - J;
+    const double k = density * bulk_sound_speed * bulk_sound_speed;
+    double slope = k * (1.0 - gruneisen * eta);  // dp_ref/deta in tension (eta <= 0)
+    if (eta > 0) {
+      const double c = 1.0 - hugoniot_slope * eta;
+      slope = k * ((1.0 - gruneisen * eta) * c + 2.0 * hugoniot_slope * eta * (1.0 - 0.5 * gruneisen * eta)) /
+              (c * c * c);
+    }
+    const double bulk = J * J / density * (slope + gruneisen * pressure(eta, state[0]));
+    return std::sqrt(std::max(0.0, bulk) + 4.0 * shear_modulus * J / (3.0 * density));
   }
 
  private:

@@ -9,6 +9,8 @@
 #include "matpoint/core/types.hpp"
 #include "matpoint/io/spec.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 namespace matpoint {
@@ -40,6 +42,23 @@ struct NeoHookean {
   }
   /// Small-strain dilatational wave speed sqrt((lambda + 2 mu) / rho).
   template <int D> [[nodiscard]] double wave_speed() const { return std::sqrt((lambda + 2.0 * mu) / density); }
+  /// The fastest longitudinal wave at F (the time step of a deformed body, Nairn 2026 §1.8): the
+  /// acoustic tensor of W = mu/2 (tr C - 3) - mu ln J + U(J) along a unit spatial direction n has
+  /// the longitudinal value (mu (n.B n + 1) / J + J U''), so with rho = rho0 / J
+  ///   c^2 = (mu (b_max + 1) + J^2 U''(J)) / rho0,  b_max the largest eigenvalue of B,
+  /// J^2 U'' = lambda (1 - ln J) (log_j) or lambda (J^2 + 1) / 2 (half_j_squared); at F = I both
+  /// give (lambda + 2 mu) / rho0.
+  template <int D> [[nodiscard]] double wave_speed_at(const Mat<D>& F) const {
+    const double J = F.determinant();
+    const Mat<D> B = F * F.transpose();
+    // Waves run only along the simulated directions: the in-plane (2-D) or axial (1-D) B.
+    double b_max = B(0, 0);
+    if constexpr (D > 1)
+      b_max = Eigen::SelfAdjointEigenSolver<Mat<D>>().computeDirect(B, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+    const double volumetric_modulus =
+        volumetric == NeoHookeanVolumetric::LogJ ? lambda * (1.0 - std::log(J)) : 0.5 * lambda * (J * J + 1.0);
+    return std::sqrt(std::max(0.0, mu * (b_max + 1.0) + volumetric_modulus) / density);
+  }
 };
 
 }  // namespace matpoint

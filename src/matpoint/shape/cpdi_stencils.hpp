@@ -36,6 +36,7 @@
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/grid_fields.hpp"
 #include "matpoint/particles/particle_set.hpp"
+#include "matpoint/shape/domain_motion.hpp"
 #include "matpoint/shape/kernels.hpp"
 
 namespace matpoint {
@@ -213,13 +214,23 @@ struct CpdiStencils {
     }
   }
 
-  /// CPDI2: moves the tracked corners with the new grid velocity (Gong eq. (6.28)) and puts the
+  /// CPDI2: moves the tracked corners with the grid velocity (Gong eq. (6.28)) and puts the
   /// particle at the centroid of its new domain (eq. (6.29)). Called after the particles moved.
-  void move_domains(const Grid<D>& grid, const GridFields<D>& fields, ParticleSet<D>& particles,
-                    double dt) const requires(Domain == CpdiDomain::Tracked) {
+  /// Each corner moves as a particle there would under the run's transfer and position weight
+  /// alpha (Nairn 2026 eqs. (7)-(9)): by S (v+ - (1 - alpha) a dt) dt with FLIP, by
+  /// (alpha S v+ + (1 - alpha) V^n_p) dt with PIC / FMPM, a blend of the two, or with XPIC by
+  /// (S v(1) + (V^{n+1}_p - V^n_p) / 2) dt; the particle-velocity parts are the same for every
+  /// corner. (FLIP with alpha = 1 is Gong's eq. (6.28).)
+  void move_domains(const Grid<D>& grid, const GridFields<D>& fields, ParticleSet<D>& particles, double dt,
+                    const DomainMotion<D>& motion) const requires(Domain == CpdiDomain::Tracked) {
     const auto n = static_cast<std::ptrdiff_t>(particles.size());
+    const double flip = motion.flip, alpha = motion.alpha;
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
     for (std::ptrdiff_t p = 0; p < n; ++p) {
+      // The part of the particle's displacement that is the same for every corner (eq. (7)-(9))
+      const Vec<D>& v_old = (*motion.old_velocity)[p];
+      const Vec<D> uniform = motion.xpic ? Vec<D>(0.5 * (particles.v[p] - v_old))
+                                         : Vec<D>((1.0 - flip) * (1.0 - alpha) * v_old);
       auto& X = particles.corners[p];
       for (int c = 0; c < C; ++c) {
         std::array<int, D> i0;
@@ -228,8 +239,16 @@ struct CpdiStencils {
           i0[a] = point_on_grid<Kernel>((X[c][a] - grid.origin[a]) / grid.h[a], grid.cells[a], w[a], dw);
         const Index b = grid.node_index(i0);
         Vec<D> v = Vec<D>::Zero();
-        for_each_tensor_node(grid, b, w, [&](Index node, double N) { v += N * fields.velocity_new[node]; });
-        X[c] += dt * v;
+        for_each_tensor_node(grid, b, w, [&](Index node, double N) {
+          if (motion.xpic) {
+            v += N * fields.velocity[node];
+          } else {
+            const Vec<D>& v_plus = fields.velocity_new[node];
+            v += N * (flip * (v_plus - (1.0 - alpha) * dt * fields.acceleration[node]) +
+                      (1.0 - flip) * alpha * v_plus);
+          }
+        });
+        X[c] += dt * (v + uniform);
       }
       std::array<double, C> wc;
       std::array<Vec<D>, C> gc;
