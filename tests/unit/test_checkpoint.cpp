@@ -87,7 +87,7 @@ RunCounters counters() {
 }
 
 History history_of(int dim, int bodies) {
-  History h{dim, bodies, {}};
+  History h{dim, bodies, {}, {}};
   for (int r = 0; r < 3; ++r) {
     HistorySample s;
     s.time = 0.1 * r + 1e-17, s.step = 10 * r, s.kinetic_energy = 1.0 / 3 + r, s.strain_energy = 2.0 / 7;
@@ -122,7 +122,7 @@ void round_trip(const std::string& shape, const std::string& transfer) {
 
   Simulation<D> read = build_simulation<D>(spec);
   RunCounters r;
-  History h{D, 1, {}};
+  History h{D, 1, {}, {}};
   read_checkpoint<D>(dir / kCheckpointFile, spec.echo, read, r, h);
   const auto& a = written.particles;
   const auto& b = read.particles;
@@ -337,7 +337,7 @@ std::string refusal(const Spec& spec, const fs::path& file) {
   try {
     Simulation<2> sim = build_simulation<2>(spec);
     RunCounters run;
-    History history{2, 1, {}};
+    History history{2, 1, {}, {}};
     read_checkpoint<2>(file, spec.echo, sim, run, history);
   } catch (const InputError& e) {
     EXPECT_EQ(e.issues().size(), 1u);
@@ -392,7 +392,7 @@ TEST(Restart, CheckpointOfAnotherDimensionIsRefused) {
   try {
     Simulation<1> sim = build_simulation<1>(one_d);
     RunCounters run;
-    History history{1, 1, {}};
+    History history{1, 1, {}, {}};
     read_checkpoint<1>(file, one_d.echo, sim, run, history);
     FAIL() << "accepted a 2-D checkpoint for a 1-D input";
   } catch (const InputError& e) {

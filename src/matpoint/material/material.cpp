@@ -102,7 +102,6 @@ void set_geostatic_stress(const std::vector<Material>& materials, const std::vec
       if (particles.body[p] != static_cast<int>(b)) continue;
       std::visit(
           [&](const auto& model) {
-            using Model = std::decay_t<decltype(model)>;
             if constexpr (requires { model.elastic.mu; model.yield; }) {  // the plastic models
               const double depth = std::max(bodies[b].geostatic_surface - particles.x[p][vertical], 0.0);
               const double vertical_stress = -model.density * g * depth;
