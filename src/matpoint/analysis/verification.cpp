@@ -356,12 +356,12 @@ std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, Mapping 
   std::vector<OrderExpectation> e;
   const bool small = amplitude <= 1e-3;
   if (mapping == Mapping::IMPM && dim == 1) {
-    const std::string src = small ? "Gong 2015 Fig. 5.5 (IMPM, as MPM: second order); extraction T8"
-                                  : "Gong 2015 Fig. 5.6 (IMPM, \"second order convergence\"); extraction T7";
+    const std::string src = small ? "Gong 2015 Fig. 5.5 (IMPM, as MPM: second order)"
+                                  : "Gong 2015 Fig. 5.6 (IMPM, \"second order convergence\")";
     second_order_fields(e,
                         src);  // velocities: reported, not checked (docs/verification.md, open differences)
   } else if (mapping == Mapping::IMPM && dim == 2) {
-    const std::string src = "Gong 2015 Figs. 5.7, 5.8 (IMPM 2-D, \"close to second order\"); extraction T11";
+    const std::string src = "Gong 2015 Figs. 5.7, 5.8 (IMPM 2-D, \"close to second order\")";
     second_order_fields(e, src);
   } else if (mapping == Mapping::MlsVelocity && shape == ShapeKind::CPDI1 && dim == 1 && !small) {
     const std::string src =
@@ -369,7 +369,7 @@ std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, Mapping 
     second_order_fields(e, src);
     e.push_back({"stress", AtLeast, 2.0,
                  "Gong 2015 Fig. 6.4 and ch. 8 (improved CPDI: \"from first order to second order for fine "
-                 "meshes\"); extraction T14",
+                 "meshes\")",
                  256, 2048});
   }
   return e;
@@ -379,7 +379,7 @@ std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, double a
   std::vector<OrderExpectation> e;
   const bool small = amplitude <= 1e-3;
   if (small && shape == ShapeKind::Linear && dim == 1) {
-    const std::string src = "Gong 2015 Fig. 4.7 (\"appears to be second order\"); extraction T5";
+    const std::string src = "Gong 2015 Fig. 4.7 (\"appears to be second order\")";
     second_order_fields(e,
                         src);  // velocities: reported, not checked (docs/verification.md, open differences)
     // Finer meshes: the mass-weighted (Shepard) mapping is first order once the particles are
@@ -395,7 +395,7 @@ std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, double a
     // exact strain vanishes and with it the O(h) strain error of linear elements (extraction §8),
     // so the expected order is 2, as in 1-D (docs/verification.md, "Disagreements").
     e.push_back(
-        {"displacement", AtLeast, 2.0, "Gong 2015 Fig. 4.9 (displacement \"second order\"); extraction T9"});
+        {"displacement", AtLeast, 2.0, "Gong 2015 Fig. 4.9 (displacement \"second order\")"});
     for (const char* q : {"stress", "density"})
       e.push_back({q, AtLeast, 2.0,
                    "extraction §8 (at T the exact strain is 0: second order, as Gong Fig. 4.7 in 1-D); Gong "
@@ -411,16 +411,16 @@ std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, double a
       e.push_back(
           {"velocity", AtLeast, 2.0, src + "; particle velocity past its pre-asymptotic range", 64, 512});
   } else if (!small && shape == ShapeKind::Linear) {
-    const std::string src = dim == 1 ? "Gong 2015 Fig. 4.8 (\"does not converge\"); extraction T6"
-                                     : "Gong 2015 Fig. 4.10 (\"does not converge\"); extraction T10";
+    const std::string src = dim == 1 ? "Gong 2015 Fig. 4.8 (\"does not converge\")"
+                                     : "Gong 2015 Fig. 4.10 (\"does not converge\")";
     e.push_back({"stress", NoConvergence, 0.0, src});
   } else if (!small && domain_integrated(shape)) {
     second_order_fields(e,
-                        "Gong 2015 Fig. 6.1 (CPDI, coarse meshes \"appears second order\"); extraction T12");
+                        "Gong 2015 Fig. 6.1 (CPDI, coarse meshes \"appears second order\")");
     if (dim == 1 && shape == ShapeKind::CPDI1)  // checked only when the case has the fine meshes (--full)
       e.push_back({"stress", Near, 1.0,
                    "Gong 2015 Fig. 6.2 (finer meshes: \"the convergence rate drops\") and ch. 8 (CPDI is "
-                   "\"first order\" on fine meshes); extraction T13",
+                   "\"first order\" on fine meshes)",
                    256, 2048});
   }
   return e;
@@ -627,8 +627,8 @@ std::vector<VerificationCheck> comparison_checks(const std::vector<VerificationO
           check.expected = rb.finished ? rb.stress : std::numeric_limits<double>::infinity();
           check.pass = std::isfinite(check.measured) && check.measured < check.expected;
           check.source =
-              impm ? "Gong 2015 Fig. 6.3 (\"IMPM has better convergence than CPDI\"); extraction T15"
-                   : "Gong 2015 Fig. 6.4 (improved CPDI beats CPDI on fine meshes); extraction T14";
+              impm ? "Gong 2015 Fig. 6.3 (\"IMPM has better convergence than CPDI\")"
+                   : "Gong 2015 Fig. 6.4 (improved CPDI beats CPDI on fine meshes)";
           checks.push_back(check);
         }
     }
