@@ -101,10 +101,8 @@ class MultiFieldContact {
   }
 
   /// Tasks 1.a / 3.a: the lumped contact law on momenta (`momentum` true) or velocities. Caches
-  /// the Net / Evolving state of every contact node for the FMPM loop that may follow. Adds to
-  /// `friction_work` the kinetic energy the tangential part of Coulomb contact removes.
-  void apply_lumped(const std::vector<double>& mass, std::vector<Vec<D>>& x, bool momentum,
-                    double* friction_work = nullptr) {
+  /// the Net / Evolving state of every contact node for the FMPM loop that may follow.
+  void apply_lumped(const std::vector<double>& mass, std::vector<Vec<D>>& x, bool momentum) {
     const auto velocity = [&](Index i) -> Vec<D> { return momentum ? Vec<D>(x[i] / mass[i]) : x[i]; };
     for (auto& e : entries_) {
       const Vec<D> dp0 = change_to_common(e, mass, velocity);
@@ -117,15 +115,11 @@ class MultiFieldContact {
       apply(e, e.applied, mass, x, momentum);
       e.total = e.applied;
     }
-    if (friction_work)
-      for (const auto& e : entries_)
-        if (e.law.law == ContactLaw::Coulomb) *friction_work += slip_work(e, e.total, mass, velocity);
   }
 
-  /// The friction work of an FMPM step, after the loop: each Coulomb node's total tangential
-  /// correction (the lumped one of task 3.a plus every increment's correction in the loop) times
-  /// the slip left in the final velocities v+(k) that move the particles. (On a FLIP step
-  /// apply_lumped counts the same product with v+(1).)
+  /// The friction work of a step: each Coulomb node's total tangential correction (the lumped one
+  /// of task 3.a, plus every increment's correction of an FMPM loop) times the slip left in
+  /// `velocity`: v+(1) right after task 3.a on a FLIP step, the final v+(k) after an FMPM loop.
   [[nodiscard]] double friction_work(const std::vector<double>& mass, const std::vector<Vec<D>>& velocity) const {
     const auto v = [&](Index i) -> Vec<D> { return velocity[i]; };
     double work = 0.0;

@@ -190,8 +190,8 @@ class ExplicitStepper {
   void contact_after_update(double dt, double t_new, Vec<D>& impulse, double& work) {
     auto& f = s_.fields;
     s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
-    // FMPM steps count the friction work after the loop (contact.friction_work), FLIP steps here
-    s_.contact.apply_lumped(f.mass, f.velocity_new, false, fmpm_now_ ? nullptr : &s_.friction_work);
+    s_.contact.apply_lumped(f.mass, f.velocity_new, false);
+    if (!fmpm_now_) s_.friction_work += s_.contact.friction_work(f.mass, f.velocity_new);  // FMPM: after the loop
     s_.conditions.apply(f.velocity_new, t_new, &f.mass, &impulse, &work);
     s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
     const auto n = static_cast<std::ptrdiff_t>(f.mass.size());

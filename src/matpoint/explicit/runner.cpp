@@ -129,7 +129,7 @@ class CappedDomains {
     const auto& ps = sim.particles;
     for (std::size_t p = 0; p < ps.size(); ++p)
       for (int a = 0; a < D; ++a)
-        if (0.5 * ps.size0[p][a] * std::abs(ps.F[p](a, a)) > 0.5 * sim.grid.h[a]) {
+        if (stretched_half_width(sim.grid, ps, p, a) > 0.5) {
           if (capped_[ps.id[p]] == 0 && first_time_ < 0) first_time_ = sim.time;
           capped_[ps.id[p]] = 1;
         }

@@ -17,12 +17,18 @@
 
 namespace matpoint {
 
+/// cpGIMP's half-width |F_aa| l0 in cells before the cap of gimp_half_width (above 1/2 it is capped).
+template <int D>
+double stretched_half_width(const Grid<D>& grid, const ParticleSet<D>& particles, std::size_t p, int a) {
+  return 0.5 * particles.size0[p][a] / grid.h[a] * std::abs(particles.F[p](a, a));
+}
+
 /// Half-width, in cells of axis a, of particle p's GIMP domain: l0 = size0 / 2 (uGIMP, B2GIMP) or
 /// |F_aa| l0 (cpGIMP), limited to [min_half_width, 1/2] (the stencil width assumes l <= h/2).
 template <class Basis, int D>
 double gimp_half_width(const Grid<D>& grid, const ParticleSet<D>& particles, std::size_t p, int a) {
-  double l = 0.5 * particles.size0[p][a] / grid.h[a];
-  if constexpr (Basis::domain == DomainWidth::Stretched) l *= std::abs(particles.F[p](a, a));
+  const double l = Basis::domain == DomainWidth::Stretched ? stretched_half_width(grid, particles, p, a)
+                                                           : 0.5 * particles.size0[p][a] / grid.h[a];
   return std::clamp(l, Basis::min_half_width, 0.5);
 }
 
