@@ -6,7 +6,7 @@
 
 Generated from the validator's own tables, between `<!-- BEGIN GENERATED: NAME -->` and
 `<!-- END GENERATED -->` markers in docs/input.md:
-  keywords         every keyword table `std::array<Named<T>, N> kX` of src/matpoint/io/input.cpp,
+  keywords         every keyword table `std::array<Named<T>, N> kX` of src/matpoint/io/input/keywords.hpp,
                    with the key(s) that read it (`("key").choice(kX)`);
   particle-fields  kParticleFields of src/matpoint/io/particle_fields.hpp;
   measures         kMeasures of src/matpoint/analysis/measures.hpp.
@@ -46,8 +46,18 @@ def keyword_tables(source):
     return tables
 
 
-# The object that each reading function of input.cpp reads (the doc's section names).
-SECTIONS = {"read_material": "materials[]", "read_shape": "bodies[].shape",
+def validator_source(root):
+    """The validator's text: the keyword tables, then the reader's files in a fixed order."""
+    folder = os.path.join(root, "src", "matpoint", "io", "input")
+    names = ["keywords.hpp", "json_value.hpp", "spec_reader.hpp"] + sorted(
+        f for f in os.listdir(folder) if f.startswith("read_") and f.endswith(".cpp"))
+    parts = [open(os.path.join(root, "src", "matpoint", "io", "input.cpp")).read()]
+    parts += [open(os.path.join(folder, name)).read() for name in names]
+    return "\n".join(parts)
+
+
+# The object that each reading function of the reader (io/input/read_*.cpp) reads (the doc's section names).
+SECTIONS = {"read_material": "materials[]", "read_plasticity": "materials[]", "read_shape": "bodies[].shape",
             "read_moving_wall": "boundary_conditions[]", "read_condition": "boundary_conditions[]",
             "read_region": "boundary_conditions[]", "read_normal": "boundary_conditions[]",
             "read_solver": "solver", "read_mapping": "solver", "read_fmpm": "solver.fmpm",
@@ -61,14 +71,17 @@ def keys_reading(source, table):
     keys = []
     for match in re.finditer(r'(?:\b(\w+)\.(?:optional|required)\("(\w+)"\)|\b(\w+))\.choice\(' + table + r"\)",
                              source):
-        owner, key = match.group(1), match.group(2) or variables.get(match.group(3))
-        functions = list(re.finditer(r"\n  (?:static )?\w+ (read_\w+)\(", source[: match.start()]))
-        if not key or not functions:
+        functions = list(re.finditer(r"\n(?:  )?(?:static )?[\w:<>]+ (?:SpecReader::)?(read_\w+)\(", source[: match.start()]))
+        if not functions:
+            continue
+        body = source[functions[-1].start() : match.start()]
+        local = dict(re.findall(r'\b(\w+)\s*=\s*\w+\.(?:optional|required|member)\("(\w+)"', body))
+        owner = match.group(1)
+        key = match.group(2) or local.get(match.group(3)) or variables.get(match.group(3))
+        if not key:
             continue
         path = SECTIONS.get(functions[-1].group(1), functions[-1].group(1))
-        body = source[functions[-1].start() : match.start()]
         sub = re.search(r"Object " + owner + r'\((?:\w+\.(?:optional|required)\("(\w+)"\)|(\w+),)', body) if owner else None
-        local = dict(re.findall(r'\b(\w+)\s*=\s*\w+\.(?:optional|required|member)\("(\w+)"', body))
         sub_key = (sub.group(1) or local.get(sub.group(2))) if sub else None
         if sub_key and not path.endswith(sub_key):  # `const Object mls(s.optional("mls"), ...)`
             path += "." + sub_key
@@ -84,9 +97,9 @@ def escape(text):
 
 def generated_blocks(root):
     read = lambda *p: open(os.path.join(root, *p)).read()
-    validator = read("src", "matpoint", "io", "input.cpp")
+    validator = validator_source(root)
     blocks = {}
-    lines = ["| Key | Accepted keywords | Table (input.cpp) |", "|---|---|---|"]
+    lines = ["| Key | Accepted keywords | Table (io/input/keywords.hpp) |", "|---|---|---|"]
     for table, words in keyword_tables(validator).items():
         keys = ", ".join(f"`{k}`" for k in keys_reading(validator, table)) or "?"
         lines.append(f"| {keys} | " + ", ".join(f'`"{w}"`' for w in words) + f" | `{table}` |")
@@ -128,10 +141,10 @@ def documented(name, doc):
 
 
 def problems(root, doc):
-    source = open(os.path.join(root, "src", "matpoint", "io", "input.cpp")).read()
+    source = validator_source(root)
     keys, keywords = validator_names(source)
     if len(keys) < 30 or len(keywords) < 20:
-        return [f"found only {len(keys)} keys and {len(keywords)} keywords in input.cpp; the patterns of "
+        return [f"found only {len(keys)} keys and {len(keywords)} keywords in io/input*; the patterns of "
                 "scripts/check_input_reference.py no longer match the validator"]
     out = [f"docs/input.md does not document the validator's key {k}" for k in sorted(keys) if not documented(k, doc)]
     out += [f"docs/input.md does not document the validator's keyword {k}"

@@ -6,7 +6,7 @@
 # Installs clang and its fuzzer/sanitizer runtimes if missing, builds fuzz/fuzz_input with
 # AddressSanitizer + UndefinedBehaviorSanitizer into build-fuzz/, seeds the corpus with every
 # example input and every malformed input of tests/inputs/bad/, and gives libFuzzer a dictionary
-# of the validator's keys and choices (the string literals of src/matpoint/io/input.cpp).
+# of the validator's keys and choices (the string literals of src/matpoint/io/input.cpp and io/input/).
 # Exit 0 and "no finding" when nothing crashed, hung or tripped a sanitizer; otherwise libFuzzer's
 # report and the reproducer file under out/fuzz/. Executions per second are printed at the end.
 set -euo pipefail
@@ -34,7 +34,7 @@ for f in examples/*/input.json tests/inputs/bad/*.json; do
   cp "$f" "$work/corpus/$(echo "$f" | tr '/' '_')"
 done
 # Dictionary: every quoted identifier-like literal of the validator (keys and choices).
-grep -o '"[a-z_][a-z0-9_+-]*"' src/matpoint/io/input.cpp | sort -u >"$work/input.dict"
+grep -oh '"[a-z_][a-z0-9_+-]*"' src/matpoint/io/input.cpp src/matpoint/io/input/* | sort -u >"$work/input.dict"
 
 echo "fuzz: running for $seconds s on $(ls "$work/corpus" | wc -l) seed inputs"
 status=0

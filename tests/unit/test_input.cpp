@@ -1,4 +1,4 @@
-// Tests of the JSON input reader (src/matpoint/io/input.cpp, format in docs/input.md).
+// Tests of the JSON input reader (src/matpoint/io/input.cpp and io/input/, format in docs/input.md).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>

@@ -1,0 +1,85 @@
+// The keywords of the input format and the values they stand for (docs/input.md lists them).
+#pragma once
+
+#include <array>
+
+#include "matpoint/io/input/json_value.hpp"
+#include "matpoint/io/spec.hpp"
+
+namespace matpoint::input_detail {
+
+constexpr std::array<Named<MaterialModel>, 7> kModels{{{"linear_elastic", MaterialModel::LinearElastic},
+                                                       {"neo_hookean", MaterialModel::NeoHookean},
+                                                       {"mie_gruneisen", MaterialModel::MieGruneisen},
+                                                       {"rigid", MaterialModel::Rigid},
+                                                       {"mohr_coulomb", MaterialModel::MohrCoulomb},
+                                                       {"drucker_prager", MaterialModel::DruckerPrager},
+                                                       {"von_mises", MaterialModel::VonMises}}};
+constexpr std::array<Named<DruckerPragerMatch>, 3> kDruckerPragerMatches{
+    {{"outer", DruckerPragerMatch::Outer},
+     {"inner", DruckerPragerMatch::Inner},
+     {"plane_strain", DruckerPragerMatch::PlaneStrain}}};
+constexpr std::array<Named<ContactLaw>, 3> kContactLaws{{{"stick", ContactLaw::Stick},
+                                                         {"frictionless", ContactLaw::Frictionless},
+                                                         {"coulomb", ContactLaw::Coulomb}}};
+constexpr std::array<Named<ContactNormals>, 3> kContactNormals{
+    {{"mass_gradient", ContactNormals::MassGradient},
+     {"average", ContactNormals::Average},
+     {"logistic_regression", ContactNormals::Logistic}}};
+constexpr std::array<Named<ContactFmpmMethod>, 2> kContactFmpmMethods{
+    {{"net", ContactFmpmMethod::Net}, {"evolving", ContactFmpmMethod::Evolving}}};
+constexpr std::array<Named<CheckKind>, 3> kCheckKinds{{{"verification", CheckKind::Verification},
+                                                       {"regression", CheckKind::Regression},
+                                                       {"guard", CheckKind::Guard}}};
+constexpr std::array<Named<bool>, 2> kContactFields{{{"bodies", false}, {"materials", true}}};
+constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
+    {{"log_j", NeoHookeanVolumetric::LogJ}, {"half_j_squared", NeoHookeanVolumetric::HalfJSquared}}};
+constexpr std::array<Named<BodyShape>, 4> kShapes{{{"box", BodyShape::Box},
+                                                   {"disk", BodyShape::Disk},
+                                                   {"sphere", BodyShape::Disk},  // 3-D only
+                                                   {"polygon", BodyShape::Polygon}}};
+constexpr std::array<Named<ConditionKind>, 4> kConditionKinds{{{"fixed", ConditionKind::Fixed},
+                                                               {"slip", ConditionKind::Slip},
+                                                               {"velocity", ConditionKind::Velocity},
+                                                               {"moving_wall", ConditionKind::MovingWall}}};
+constexpr std::array<Named<bool>, 2> kMaterialSides{{{"below", true}, {"above", false}}};
+constexpr std::array<Named<int>, 6> kFaces{
+    {{"x-", 0}, {"x+", 1}, {"y-", 2}, {"y+", 3}, {"z-", 4}, {"z+", 5}}};  // axis = id / 2, side = id % 2
+constexpr std::array<Named<int>, 3> kAxes{{{"x", 0}, {"y", 1}, {"z", 2}}};
+constexpr std::array<Named<UpdateScheme>, 6> kSchemes{{{"usl", UpdateScheme::USL},
+                                                       {"usf", UpdateScheme::USF},
+                                                       {"musl", UpdateScheme::MUSL},
+                                                       {"usl+", UpdateScheme::MUSL},
+                                                       {"usavg", UpdateScheme::USAVG},
+                                                       {"usavg+", UpdateScheme::USAVGPlus}}};
+constexpr std::array<Named<VelocityTransfer>, 5> kTransfers{{{"flip", VelocityTransfer::FLIP},
+                                                             {"pic", VelocityTransfer::PIC},
+                                                             {"blend", VelocityTransfer::Blend},
+                                                             {"fmpm", VelocityTransfer::FMPM},
+                                                             {"xpic", VelocityTransfer::XPIC}}};
+constexpr std::array<Named<FmpmMeasure>, 2> kFmpmMeasures{
+    {{"means", FmpmMeasure::Means}, {"changes", FmpmMeasure::Changes}}};
+constexpr std::array<Named<FmpmBoundaryMethod>, 2> kFmpmBoundaryMethods{
+    {{"incremental", FmpmBoundaryMethod::Incremental}, {"combined", FmpmBoundaryMethod::Combined}}};
+constexpr std::array<Named<FmpmRecursion>, 2> kFmpmRecursions{
+    {{"incremental", FmpmRecursion::Incremental}, {"binomial", FmpmRecursion::Binomial}}};
+constexpr int kMaxFmpmOrder = 1000;
+constexpr std::array<Named<ShapeKind>, 9> kShapeKinds{{{"linear", ShapeKind::Linear},
+                                                       {"bspline2", ShapeKind::BSpline2},
+                                                       {"bspline3", ShapeKind::BSpline3},
+                                                       {"ugimp", ShapeKind::UGIMP},
+                                                       {"cpgimp", ShapeKind::CpGIMP},
+                                                       {"cpdi1", ShapeKind::CPDI1},
+                                                       {"cpdi2", ShapeKind::CPDI2},
+                                                       {"b2gimp", ShapeKind::B2GIMP},
+                                                       {"b2cpdi", ShapeKind::B2CPDI}}};
+constexpr std::array<Named<Mapping>, 3> kMappings{
+    {{"mpm", Mapping::MPM}, {"impm", Mapping::IMPM}, {"mls_velocity", Mapping::MlsVelocity}}};
+constexpr std::array<Named<CellQuadrature>, 2> kCellQuadratures{
+    {{"cell_centre", CellQuadrature::Centre}, {"gauss_2x2", CellQuadrature::Gauss2}}};
+constexpr std::array<Named<CellVolume>, 2> kCellVolumes{
+    {{"cell", CellVolume::Full}, {"particle_fraction", CellVolume::ParticleFraction}}};
+constexpr std::array<Named<DeformationUpdate>, 2> kDeformationUpdates{
+    {{"exponential", DeformationUpdate::Exponential}, {"linear", DeformationUpdate::Linear}}};
+
+}  // namespace matpoint::input_detail

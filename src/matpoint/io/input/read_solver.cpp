@@ -1,0 +1,208 @@
+// The input reader, section loads and the solver (docs/input.md).
+#include <algorithm>
+#include <cassert>
+#include <cctype>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <iomanip>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string_view>
+#include <utility>
+
+#include "matpoint/analysis/measures.hpp"
+#include "matpoint/core/errors.hpp"
+#include "matpoint/io/input/keywords.hpp"
+#include "matpoint/io/input/spec_reader.hpp"
+#include "matpoint/io/memory_estimate.hpp"
+#include "matpoint/io/particle_fields.hpp"
+#include "matpoint/shape/stencil_width.hpp"
+
+namespace matpoint::input_detail {
+
+void SpecReader::read_loads(const Object& loads) {
+  set_if(spec_.loads.gravity, loads.optional("gravity").vector(dim_));
+}
+
+void SpecReader::read_solver(const Object& s) {
+  SolverSpec& out = spec_.solver;
+  set_if(out.scheme, s.optional("scheme").choice(kSchemes));
+  const auto transfer = s.optional("transfer").choice(kTransfers);
+  set_if(out.transfer, transfer);
+  if (out.transfer == VelocityTransfer::FMPM) out.position_alpha = 0.5;  // Nairn 2026 §2.1: consistent
+  set_if(out.position_alpha, s.optional("position_alpha").number(kUnitInterval));
+  read_fmpm(s, out);
+  const Value flip_fraction = s.optional("flip_fraction");
+  if (out.transfer == VelocityTransfer::Blend)
+    out.flip_fraction = flip_fraction.number(kUnitInterval).value_or(0.99);
+  else if (flip_fraction.present() && (transfer || !s.has("transfer")))
+    flip_fraction.fail("no flip_fraction unless transfer is \"blend\"");
+  // Without a basis: quadratic B-splines, the user guide's recommendation (no cell-crossing
+  // noise); linear under mapping "impm", whose cell quadrature needs it (Gong 2015 §5.3).
+  const bool impm = s.optional("mapping").present() && s.optional("mapping").get() == "impm";
+  out.shape = impm ? ShapeKind::Linear : ShapeKind::BSpline2;
+  set_if(out.shape, s.optional("basis").choice(kShapeKinds));
+  if (s.has("shape"))  // the key's old name, easily confused with bodies[].shape (a body's geometry)
+    s.optional("shape").fail(
+        "no key shape here: the basis functions are solver.basis (renamed from solver.shape)");
+  read_mapping(s, out);
+  set_if(out.deformation_update, s.optional("deformation_update").choice(kDeformationUpdates));
+  out.dt = s.optional("dt").number(kPositive);
+  const Value courant = s.optional("courant");
+  if (s.has("dt") && courant.present())
+    courant.fail("no courant when dt is given (one of dt or courant)");
+  else
+    set_if(out.courant, courant.number({0, 1, true, false}));
+  set_if(out.end_time, s.required("end_time").number(kPositive));
+  set_if(out.max_steps, s.optional("max_steps").integer(0));
+  set_if(out.mass_tolerance, s.optional("mass_tolerance").number({0, 1, false, true}));
+  read_constrain_old_velocity(s.optional("constrain_old_velocity"), out);
+  read_energy_guard(s.optional("max_energy_growth"), out);
+  read_artificial_viscosity(Object(s.optional("artificial_viscosity"), {"linear", "quadratic"}), out);
+}
+
+/// solver.max_energy_growth: a number > 0 (explicit/energy_guard.hpp), or "off".
+void SpecReader::read_energy_guard(const Value& growth, SolverSpec& out) {
+  if (!growth.present()) return;
+  const json& j = growth.get();
+  if (j.is_string() && j.get_ref<const std::string&>() == "off")
+    out.max_energy_growth.reset();
+  else if (j.is_number() && j.get<double>() > 0 && std::isfinite(j.get<double>()))
+    out.max_energy_growth = j.get<double>();
+  else
+    growth.fail("a number > 0, or \"off\"");
+}
+
+/// solver.constrain_old_velocity: Gong 2015's wall treatment (extraction A24): the velocity
+/// conditions also hold on the old node velocities v(1), so a = (v+ - v) / dt and the FLIP
+/// increment carry no wall reaction. The FMPM and XPIC loops apply the conditions themselves.
+void SpecReader::read_constrain_old_velocity(const Value& v, SolverSpec& out) {
+  set_if(out.constrain_old_velocity, v.boolean());
+  if (out.constrain_old_velocity &&
+      (out.transfer == VelocityTransfer::FMPM || out.transfer == VelocityTransfer::XPIC))
+    v.fail(
+        "false with transfer \"fmpm\" or \"xpic\" (their loops apply the velocity conditions to "
+        "every increment, Nairn 2026 Table 2)");
+}
+
+/// solver.artificial_viscosity: {"linear": A1, "quadratic": A2}, NairnMPM's defaults 0.2 and 2.0.
+void SpecReader::read_artificial_viscosity(const Object& a, SolverSpec& out) {
+  if (!a.valid()) return;
+  out.av_linear = a.optional("linear").number(kNonNegative).value_or(0.2);
+  out.av_quadratic = a.optional("quadratic").number(kNonNegative).value_or(2.0);
+}
+
+/// solver.mapping and solver.mls: Gong 2015's IMPM (§5.4) and MLS velocity mapping (§6.6).
+void SpecReader::read_mapping(const Object& s, SolverSpec& out) const {
+  const Value mapping = s.optional("mapping");
+  set_if(out.mapping, mapping.choice(kMappings));
+  const Value mls_value = s.optional("mls");
+  if (out.mapping == Mapping::MPM) {
+    if (mls_value.present()) mls_value.fail("no mls unless mapping is \"impm\" or \"mls_velocity\"");
+    return;
+  }
+  if (out.mapping == Mapping::IMPM && out.shape != ShapeKind::Linear)
+    mapping.fail(
+        "\"impm\" with basis \"linear\" (the cell quadrature uses the bilinear N_i), or "
+        "\"mls_velocity\" for the other bases");
+  if (out.transfer == VelocityTransfer::FMPM || out.transfer == VelocityTransfer::XPIC)
+    mapping.fail("\"mpm\" with transfer \"fmpm\" or \"xpic\" (their passes re-map the momentum by mass)");
+  const Object mls(mls_value, {"degree", "quadrature", "cell_volume"});
+  set_if(out.mls.degree, mls.optional("degree").integer(0, 1));
+  for (const char* key : {"quadrature", "cell_volume"})
+    if (out.mapping != Mapping::IMPM && mls.has(key))
+      mls.optional(key).fail(std::string("no ") + key + " unless mapping is \"impm\"");
+  set_if(out.mls.quadrature, mls.optional("quadrature").choice(kCellQuadratures));
+  set_if(out.mls.cell_volume, mls.optional("cell_volume").choice(kCellVolumes));
+}
+
+/// solver.fmpm (transfer "fmpm") or solver.xpic (transfer "xpic"): Nairn 2026 §2.2-3.4.
+void SpecReader::read_fmpm(const Object& s, SolverSpec& out) const {
+  const bool fmpm = out.transfer == VelocityTransfer::FMPM, xpic = out.transfer == VelocityTransfer::XPIC;
+  for (const char* key : {"fmpm", "xpic"}) {
+    const Value v = s.optional(key);
+    if (v.present() && !(key == std::string_view("fmpm") ? fmpm : xpic))
+      v.fail(std::string("no ") + key + " unless transfer is \"" + key + "\"");
+  }
+  if (xpic) {
+    const Object x(s.optional("xpic"), {"order"});
+    set_if(out.fmpm.order, x.optional("order").integer(1, kMaxFmpmOrder));
+    return;
+  }
+  if (!fmpm) return;
+  const Object f(s.optional("fmpm"),
+                 {"order", "blend", "dynamic", "periodic", "boundary_method", "recursion"});
+  FmpmSpec& k = out.fmpm;
+  set_if(k.order, f.optional("order").integer(1, kMaxFmpmOrder));
+  const Object blend(f.optional("blend"), {"with", "factor"});
+  if (blend.valid()) {
+    set_if(k.blend_with, blend.required("with").integer(1, 2));
+    set_if(k.blend_factor, blend.required("factor").number(kUnitInterval));
+  }
+  const Object dynamic(f.optional("dynamic"), {"measure", "limit"});
+  if (dynamic.valid()) {
+    set_if(k.measure, dynamic.required("measure").choice(kFmpmMeasures));
+    set_if(k.limit, dynamic.required("limit").number(kPositive));
+  }
+  const Object periodic(f.optional("periodic"), {"courant", "steps", "time"});
+  if (periodic.valid()) {
+    int given = 0;
+    if (const auto c = periodic.optional("courant").number(kPositive)) {
+      k.period = FmpmPeriod::Courant, k.period_value = *c, ++given;
+    }
+    if (const auto n = periodic.optional("steps").integer(1)) {
+      k.period = FmpmPeriod::Steps, k.period_value = static_cast<double>(*n), ++given;
+    }
+    if (const auto t = periodic.optional("time").number(kPositive)) {
+      k.period = FmpmPeriod::Time, k.period_value = *t, ++given;
+    }
+    if (given != 1) periodic.value().fail("an object with exactly one of the keys courant, steps or time");
+  }
+  set_if(k.boundary_method, f.optional("boundary_method").choice(kFmpmBoundaryMethods));
+  set_if(k.recursion, f.optional("recursion").choice(kFmpmRecursions));
+  if (k.recursion == FmpmRecursion::Binomial && (k.blend_with > 0 || k.measure != FmpmMeasure::None))
+    f.optional("recursion").fail("\"incremental\" with blend or dynamic (eq. 4 has no per-increment step)");
+}
+
+/// The basis's stencil must fit on the grid (shape/stencil_width.hpp).
+void SpecReader::check_stencil_fits() {
+  const int fewest = minimum_cells(spec_.solver.shape);
+  for (int a = 0; a < dim_; ++a)
+    if (spec_.grid.cells[a] < fewest) {
+      issues_.add("grid.cell_size", format_number(spec_.grid.cell_size[a]),
+                  "at least " + std::to_string(fewest) + " cells per direction for solver.basis \"" +
+                      std::string(name_of(kShapeKinds, spec_.solver.shape)) + "\" (its stencil is " +
+                      std::to_string(fewest + 1) + " nodes wide); the grid has " +
+                      std::to_string(spec_.grid.cells[a]) + " along axis " + std::to_string(a));
+      return;
+    }
+}
+
+/// A run of more than kMaxPlausibleSteps steps without solver.max_steps is almost always a unit
+/// mix-up (end_time in ms against SI moduli, a cell size in m against a grid in mm, ...): refused
+/// with the estimate. dt from solver.dt, or the Courant number with the elastic wave speed
+/// sqrt((lambda + 2 mu) / rho) of the stiffest material (particle speeds are not known yet).
+void SpecReader::check_step_count() {
+  const SolverSpec& solver = spec_.solver;
+  if (solver.max_steps > 0) return;
+  double dt = solver.dt.value_or(0.0);
+  if (!solver.dt) {
+    double speed = 0.0, h = kInf;
+    for (const auto& m : spec_.materials)
+      speed = std::max(speed, std::sqrt((m.lambda + 2.0 * m.mu) / m.density));
+    for (int a = 0; a < dim_; ++a) h = std::min(h, spec_.grid.cell_size[a]);
+    if (!(speed > 0.0)) return;
+    dt = solver.courant * h / speed;
+  }
+  const double steps = solver.end_time / dt;
+  if (steps <= kMaxPlausibleSteps) return;
+  issues_.add("solver.end_time", format_number(solver.end_time),
+              "a run of at most 1e9 time steps without solver.max_steps; this one needs about " +
+                  format_number(std::round(steps)) + " steps of dt = " + format_number(dt) +
+                  " (check the units of end_time, cell_size, E and density, or set solver.max_steps)");
+}
+
+}  // namespace matpoint::input_detail
