@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "matpoint/analysis/verification.hpp"
-#include "matpoint/explicit/runner.hpp"
+#include "matpoint/run/runner.hpp"
 #include "matpoint/io/input.hpp"
 
 namespace matpoint::test {

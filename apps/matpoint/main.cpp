@@ -13,7 +13,7 @@
 #include "matpoint/core/interrupt.hpp"
 #include "matpoint/core/version.hpp"
 #include "matpoint/explicit/setup_warnings.hpp"
-#include "matpoint/explicit/runner.hpp"
+#include "matpoint/run/runner.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/checkpoint.hpp"
 #include "matpoint/io/input.hpp"

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "matpoint/core/errors.hpp"
-#include "matpoint/explicit/runner.hpp"
+#include "matpoint/run/runner.hpp"
 #include "matpoint/io/input.hpp"
 
 namespace matpoint {

@@ -2,7 +2,7 @@
 // measured on the Nairn 2026 vibrating bar (scripts/courant_limits_by_basis.sh). `matpoint run`
 // warns when the input's Courant number exceeds the limit measured for its basis and transfer,
 // and says on what it was measured; where nothing was measured it says nothing (the energy-growth
-// guard, explicit/energy_guard.hpp, stops a run that goes unstable all the same).
+// guard, run/energy_guard.hpp, stops a run that goes unstable all the same).
 #pragma once
 
 #include <array>

@@ -22,7 +22,7 @@ inline constexpr long kCheckpointFormatVersion = 2;  // 2: particles/stress_zz (
 
 using PvdEntries = std::vector<std::pair<double, std::string>>;  // (time, file) of a .pvd collection
 
-/// The state of a run outside the Simulation (explicit/runner.cpp) that a restart continues from.
+/// The state of a run outside the Simulation (run/runner.cpp) that a restart continues from.
 struct RunCounters {
   double dt = 0.0;              // the run's time step (computed once at time 0)
   double momentum_scale = 0.0;  // sum m |v| at time 0 (the momentum checks' scale)

@@ -168,7 +168,7 @@ struct SolverSpec {
   // Gong 2015 extraction A24: the velocity conditions also hold on the old node velocities, so the
   // FLIP increment carries no boundary reaction (input key solver.constrain_old_velocity, default false).
   bool constrain_old_velocity = false;
-  // The energy-growth guard (explicit/energy_guard.hpp): stop when the energy balance rises by
+  // The energy-growth guard (run/energy_guard.hpp): stop when the energy balance rises by
   // more than this many times the energy scale; empty: off ("off" in the input).
   std::optional<double> max_energy_growth = 1.0;
   // Artificial bulk viscosity coefficients A1 (linear), A2 (quadratic); zero: off.

@@ -64,7 +64,7 @@ void SpecReader::read_solver(const Object& s) {
   read_artificial_viscosity(Object(s.optional("artificial_viscosity"), {"linear", "quadratic"}), out);
 }
 
-/// solver.max_energy_growth: a number > 0 (explicit/energy_guard.hpp), or "off".
+/// solver.max_energy_growth: a number > 0 (run/energy_guard.hpp), or "off".
 void SpecReader::read_energy_guard(const Value& growth, SolverSpec& out) {
   if (!growth.present()) return;
   const json& j = growth.get();

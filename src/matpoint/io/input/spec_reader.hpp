@@ -136,7 +136,7 @@ class SpecReader {
 
   void read_solver(const Object& s);
 
-  /// solver.max_energy_growth: a number > 0 (explicit/energy_guard.hpp), or "off".
+  /// solver.max_energy_growth: a number > 0 (run/energy_guard.hpp), or "off".
   static void read_energy_guard(const Value& growth, SolverSpec& out);
 
   /// solver.constrain_old_velocity: Gong 2015's wall treatment (extraction A24): the velocity

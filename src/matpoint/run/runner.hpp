@@ -1,21 +1,20 @@
-// Runs an explicit simulation from a validated Spec: time loop, output schedule, guards, checks,
-// summary. The basis and dimension are chosen here, once, before any hot loop runs.
+// Runs a simulation from a validated Spec through the shared loop (run/run_loop.hpp) with the solver
+// the input selects; the basis and dimension are chosen here, once, before any hot loop runs.
 #pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
 
 #include "matpoint/analysis/history.hpp"
 #include "matpoint/io/spec.hpp"
-
-#include <nlohmann/json.hpp>
-
-#include <filesystem>
-#include <string>
 
 namespace matpoint {
 
 struct RunOptions {
   std::filesystem::path out_dir = "out";
-  int threads = 0;                 // 0: OpenMP default
-  bool progress = true;            // progress on stderr (a bar on a terminal, log lines otherwise)
+  int threads = 0;                    // 0: OpenMP default
+  bool progress = true;               // progress on stderr (a bar on a terminal, log lines otherwise)
   std::filesystem::path scripts_dir;  // folder of plot_history.py; empty: no plots
   std::filesystem::path restart;      // a checkpoint to continue from; empty: start at time 0
 };

@@ -40,7 +40,8 @@ class EnergyGuard {
     const auto& first = history.samples.front();
     scale_.initial = first.kinetic_energy + first.strain_energy;
     balance0_ = balance(first.kinetic_energy, first.strain_energy, first.friction_work, first.external_work);
-    for (const auto& s : history.samples) scale_.external_work = std::max(scale_.external_work, std::abs(s.external_work));
+    for (const auto& s : history.samples)
+      scale_.external_work = std::max(scale_.external_work, std::abs(s.external_work));
   }
 
   /// Called after every step; `recorded`: the step was written to the history (its row counts
@@ -81,8 +82,9 @@ class EnergyGuard {
     for (std::size_t p = 1; p < ps.size(); ++p)
       if (!(ps.v[p].squaredNorm() <= ps.v[fastest].squaredNorm())) fastest = p;
     std::ostringstream entity;
-    entity << "particle " << ps.id[fastest] << " (body " << ps.body[fastest] << ", the fastest: |v| = "
-           << ps.v[fastest].norm() << ") at x = (" << ps.x[fastest].transpose() << ")";
+    entity << "particle " << ps.id[fastest] << " (body " << ps.body[fastest]
+           << ", the fastest: |v| = " << ps.v[fastest].norm() << ") at x = (" << ps.x[fastest].transpose()
+           << ")";
     return entity.str();
   }
 

@@ -13,8 +13,8 @@
 #include "matpoint/analysis/history.hpp"
 #include "matpoint/explicit/fmpm.hpp"
 #include "matpoint/explicit/mls_mapping.hpp"
-#include "matpoint/explicit/runner.hpp"
 #include "matpoint/io/spec.hpp"
+#include "matpoint/run/runner.hpp"
 
 namespace matpoint {
 
@@ -43,7 +43,7 @@ struct RunFacts {
     long particle = -1;                      // the followed particle's id
     std::vector<double> reference_position;  // its X
   };
-  std::vector<Probe> probes;  // output.probes, in input order
+  std::vector<Probe> probes;          // output.probes, in input order
   std::vector<std::string> warnings;  // found while running (setup_warnings() adds the input's own)
 };
 

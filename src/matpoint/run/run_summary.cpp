@@ -1,4 +1,4 @@
-#include "matpoint/explicit/run_summary.hpp"
+#include "matpoint/run/run_summary.hpp"
 
 #include <cmath>
 

@@ -1,0 +1,244 @@
+// The time loop every solver shares: output schedule, history and particle outputs, checkpoints
+// and restart, guards, signals, summary and plots. The solver is the part that differs: it is a
+// template argument with this small interface (the explicit one: explicit/explicit_solver.hpp):
+//
+//   Simulation<D>& sim();  const Simulation<D>& sim() const;
+//                                  the state that outputs, checkpoints and guards read
+//   double time_step();           the next full step (the loop shortens it to land on outputs)
+//   void step(double h);          advances sim() by h; throws NumericalFailure (exit 3)
+//   void after_step();            cheap per-step checks (may throw NumericalFailure)
+//   void save(RunCounters&) const;        the solver's own counters into a checkpoint
+//   void restore(const RunCounters&);     and back from one (restart)
+//   void add_facts(RunFacts&) const;      its statistics and warnings for summary.json
+#pragma once
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "matpoint/analysis/probes.hpp"
+#include "matpoint/core/errors.hpp"
+#include "matpoint/core/interrupt.hpp"
+#include "matpoint/core/progress.hpp"
+#include "matpoint/io/atomic_file.hpp"
+#include "matpoint/io/checkpoint.hpp"
+#include "matpoint/io/output_folder.hpp"
+#include "matpoint/run/energy_guard.hpp"
+#include "matpoint/run/run_outputs.hpp"
+#include "matpoint/run/run_summary.hpp"
+#include "matpoint/run/runner.hpp"
+
+namespace matpoint {
+
+namespace run_loop_detail {
+
+int current_threads();
+const char* signal_name(int signal);
+/// Every history.csv column of the input's probes (analysis/probes.hpp).
+std::vector<std::string> probe_columns(const Spec& spec);
+
+/// Takes checkpoints when `output.checkpoint` asks for them (every N steps or T wall minutes)
+/// and on demand; remembers the last one.
+class CheckpointClock {
+ public:
+  CheckpointClock(const CheckpointSpec& every, std::filesystem::path out_dir, long restart_step)
+      : every_(every), out_dir_(std::move(out_dir)), step_(restart_step) {}
+
+  [[nodiscard]] bool due(long step) const {
+    const auto minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() / 60;
+    return (every_.every_steps > 0 && step % every_.every_steps == 0) ||
+           (every_.every_minutes > 0 && minutes >= every_.every_minutes);
+  }
+
+  template <int D>
+  void save(const Simulation<D>& sim, const RunCounters& now, const History& history,
+            const nlohmann::json& input) {
+    file_ = out_dir_ / kCheckpointFile;
+    write_checkpoint<D>(file_, out_dir_ / kPreviousCheckpointFile, sim, now, history, input);
+    last_ = std::chrono::steady_clock::now();
+    step_ = sim.step;
+  }
+
+  [[nodiscard]] long step() const { return step_; }  // of the last checkpoint; -1: none
+  [[nodiscard]] const std::filesystem::path& file() const { return file_; }
+
+ private:
+  CheckpointSpec every_;
+  std::filesystem::path out_dir_, file_;
+  long step_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+/// Starts a run: from the input (dt and the momentum scale from the initial state) or from a
+/// checkpoint (everything as the interrupted run had it). Throws InputError before writing.
+template <int D, class Solver>
+RunCounters start_state(const RunOptions& options, const Spec& spec, Solver& solver, History& history) {
+  RunCounters run;
+  Simulation<D>& sim = solver.sim();
+  if (!options.restart.empty()) {
+    read_checkpoint<D>(options.restart, spec.echo, sim, run, history);
+    refuse_stale_checkpoint(options.restart, sim.step);  // a finished run went further than it
+    if (run.threads != current_threads())
+      std::fprintf(
+          stderr,
+          "warning: the checkpoint was written by a run with %d thread(s), this one has %d: the results "
+          "will differ from an uninterrupted run in round-off (same thread count: bit for bit)\n",
+          run.threads, current_threads());
+    solver.restore(run);
+    return run;
+  }
+  run.dt = solver.time_step();
+  for (std::size_t p = 0; p < sim.particles.size(); ++p)
+    run.momentum_scale += sim.particles.mass[p] * sim.particles.v[p].norm();
+  run.next_output_time = spec.output.every_time;
+  return run;
+}
+
+/// The summary's facts that every solver shares: counts, time, threads, final stresses.
+template <int D>
+void add_state_facts(const Simulation<D>& sim, RunFacts& facts) {
+  facts.dimension = D;
+  facts.particles = sim.particles.size();
+  facts.nodes = sim.grid.node_count;
+  facts.steps = sim.step;
+  facts.time = sim.time;
+  facts.threads = current_threads();
+  for (const auto& stress : sim.particles.stress) facts.final_stress_xx.push_back(stress(0, 0));
+}
+
+}  // namespace run_loop_detail
+
+/// The time loop of one solver: steps, outputs, checkpoints, guards and signals; the summary is
+/// built from plain numbers afterwards (run_summary.cpp). Throws InputError before writing
+/// anything when a restart's checkpoint does not fit.
+template <int D, class Solver>
+RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) {
+  using namespace run_loop_detail;
+  Simulation<D>& sim = solver.sim();
+  History restored{D, static_cast<int>(spec.bodies.size()), probe_columns(spec), {}};
+  RunCounters run = start_state<D>(options, spec, solver, restored);  // may throw InputError
+  const bool restarting = !options.restart.empty();
+  std::filesystem::create_directories(options.out_dir);
+  const auto probe_ids = probe_particle_ids<D>(sim.initial_position, spec.output.probes);
+  RunOutputs<D> outputs(spec, options.out_dir, std::move(restored), run, probe_ids);
+
+  OutputSchedule schedule(spec.output, sim.time, run.next_output_time);
+  Progress progress(options.progress, spec.solver.end_time);
+  long last_recorded_step = run.last_recorded_step;
+  const long restart_step = sim.step;
+  if (restarting)
+    outputs.write_history();  // drops any rows a killed run wrote after its checkpoint
+  else
+    outputs.record(sim);
+
+  RunResult result;
+  const auto wall_start = std::chrono::steady_clock::now();
+  double step_wall = run.step_wall, step_cpu = run.step_cpu;
+  const auto wall_now = [&] {
+    return run.wall + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+
+  // A checkpoint holds the state after a completed step with the scheduled outputs up to it; it is
+  // taken before the extra output of a run's last step, so a restart repeats the outputs exactly.
+  CheckpointClock checkpoints(spec.output.checkpoint, options.out_dir, restarting ? sim.step : -1);
+  double dt = run.dt;  // the present full step (recomputed each step)
+  auto save_checkpoint = [&] {
+    RunCounters now = run;
+    solver.save(now);
+    now.outputs = outputs.count();
+    now.next_output_time = schedule.next_time();
+    now.last_recorded_step = last_recorded_step;
+    now.step_wall = step_wall, now.step_cpu = step_cpu, now.wall = wall_now();
+    now.dt = dt;
+    now.threads = current_threads();
+    now.results = outputs.results_entries(), now.domains = outputs.domains_entries();
+    checkpoints.save<D>(sim, now, outputs.history(), spec.echo);
+  };
+
+  int interrupted = 0;
+  const double end_time = spec.solver.end_time;
+  EnergyGuard energy_guard(spec.solver.max_energy_growth, outputs.history());
+  while (sim.time < end_time * (1 - 1e-12) &&
+         (spec.solver.max_steps == 0 || sim.step < spec.solver.max_steps)) {
+    // The solver's step (explicit: Nairn 2026 §1.8, dt = C dx / max_p max(c_p, |V_p|) from the
+    // present state, or solver.dt), shortened (or stretched by at most 1e-6) to land exactly on
+    // the next output time and the end.
+    dt = solver.time_step();
+    const double target =
+        spec.output.exact_times ? std::min(end_time, schedule.target_time(sim.time)) : end_time;
+    const bool lands = target - sim.time <= dt * (1 + 1e-6);
+    const double h = lands ? target - sim.time : dt;
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
+    bool recorded = false;
+    try {
+      solver.step(h);
+      if (lands) sim.time = target;  // exactly, not t + (target - t) rounded
+      step_cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+      step_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      recorded = schedule.due(sim.step, sim.time);
+      energy_guard.after_step(sim, recorded);
+      solver.after_step();
+    } catch (const NumericalFailure& failure) {
+      result.exit_code = kExitNumerical;
+      result.message = failure.what();
+      break;
+    }
+    if (recorded) {
+      outputs.record(sim);
+      last_recorded_step = sim.step;
+    }
+    progress.update(sim.step, sim.time);
+    if (checkpoints.due(sim.step)) save_checkpoint();
+    if ((interrupted = interrupt_signal()) != 0) break;
+  }
+  const bool finished = result.exit_code == kExitOk && interrupted == 0;
+  if (checkpoints.step() != sim.step && (interrupted != 0 || (finished && spec.output.checkpoint.enabled())))
+    save_checkpoint();
+  if (interrupted != 0) {
+    result.exit_code = 128 + interrupted;
+    std::ostringstream message;
+    message << "interrupted by " << signal_name(interrupted) << " after step " << sim.step << ", time "
+            << sim.time << "; continue with --restart " << checkpoints.file().string();
+    result.message = message.str();
+  }
+  if (result.exit_code != kExitNumerical && last_recorded_step != sim.step) outputs.record(sim);
+  outputs.write_history();
+  progress.finish(finished ? "done" : interrupted != 0 ? "interrupted" : "stopped: numerical failure");
+
+  RunFacts facts;
+  facts.status = finished ? "ok" : interrupted != 0 ? "interrupted" : "numerical_failure";
+  facts.exit_code = result.exit_code;
+  facts.message = result.message;
+  facts.restart_step = restarting ? restart_step : -1;
+  facts.checkpoint_file = checkpoints.file();
+  facts.checkpoint_step = checkpoints.step();
+  facts.dt = dt;  // the last full step's (fixed: solver.dt)
+  facts.wall = wall_now();
+  facts.step_wall = step_wall;
+  facts.step_cpu = step_cpu;
+  facts.outputs = outputs.count();
+  facts.momentum_scale = run.momentum_scale;
+  add_state_facts(sim, facts);
+  solver.add_facts(facts);
+  for (long id : probe_ids) {
+    const Vec<D>& X = sim.initial_position[id];
+    facts.probes.push_back({id, std::vector<double>(X.data(), X.data() + D)});
+  }
+
+  result.summary = run_summary(spec, options, facts, outputs.history());
+  write_file_atomically(options.out_dir / "summary.json", result.summary.dump(2) + "\n");
+  if (spec.output.plots && !options.scripts_dir.empty())
+    if (const auto error = draw_plots(options.out_dir, options.scripts_dir); !error.empty())
+      std::fprintf(stderr, "warning: could not draw plots: %s\n", error.c_str());
+  result.history = outputs.take_history();
+  return result;
+}
+
+}  // namespace matpoint
