@@ -54,6 +54,8 @@ inline bool in_triangle(const Vec<2>& xi, double tolerance) {
 /// Bilinear quadrilateral on [-1, 1]^2.
 struct Q4 {
   static constexpr ElementShape kShape = ElementShape::Q4;
+  /// The element of the corners alone; its values are the corner weights of a point (refinement).
+  using Linear = Q4;
   static constexpr int kDim = 2, kNodes = 4, kDegree = 1, kCorners = 4;
   static constexpr bool kSimplex = false;
   static constexpr const char* kName = "q4";
@@ -93,6 +95,8 @@ struct Q4 {
 /// Biquadratic (9-node Lagrange) quadrilateral on [-1, 1]^2, the element of the paper's §11.
 struct Q9 {
   static constexpr ElementShape kShape = ElementShape::Q9;
+  /// The element of the corners alone; its values are the corner weights of a point (refinement).
+  using Linear = Q4;
   static constexpr int kDim = 2, kNodes = 9, kDegree = 2, kCorners = 4;
   static constexpr bool kSimplex = false;
   static constexpr const char* kName = "q9";
@@ -133,6 +137,8 @@ struct Q9 {
 /// Linear triangle on the reference triangle (0,0) (1,0) (0,1); N = barycentric coordinates.
 struct T3 {
   static constexpr ElementShape kShape = ElementShape::T3;
+  /// The element of the corners alone; its values are the corner weights of a point (refinement).
+  using Linear = T3;
   static constexpr int kDim = 2, kNodes = 3, kDegree = 1, kCorners = 3;
   static constexpr bool kSimplex = true;
   static constexpr const char* kName = "t3";
@@ -160,6 +166,8 @@ struct T3 {
 /// (Zienkiewicz & Taylor, The Finite Element Method, vol. 1, §8.8).
 struct T6 {
   static constexpr ElementShape kShape = ElementShape::T6;
+  /// The element of the corners alone; its values are the corner weights of a point (refinement).
+  using Linear = T3;
   static constexpr int kDim = 2, kNodes = 6, kDegree = 2, kCorners = 3;
   static constexpr bool kSimplex = true;
   static constexpr const char* kName = "t6";
@@ -199,6 +207,8 @@ struct T6 {
 /// Trilinear hexahedron on [-1, 1]^3.
 struct Hex8 {
   static constexpr ElementShape kShape = ElementShape::Hex8;
+  /// The element of the corners alone; its values are the corner weights of a point (refinement).
+  using Linear = Hex8;
   static constexpr int kDim = 3, kNodes = 8, kDegree = 1, kCorners = 8;
   static constexpr bool kSimplex = false;
   static constexpr const char* kName = "hex8";
