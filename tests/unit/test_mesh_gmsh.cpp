@@ -201,14 +201,14 @@ TEST(GmshImport, ErrorsNameTheFileAndTheProblem) {
   const std::string message = import_error<2>(truncated);
   EXPECT_NE(message.find(truncated), std::string::npos) << message;
   EXPECT_NE(message.find("Gmsh could not read it"), std::string::npos) << message;
-  // Not a mesh at all (Gmsh parses it as a script and fails), an empty file, and a 2-D mesh read as
-  // 3-D: the last two have no elements of the dimension.
+  // Not a mesh at all (Gmsh would run it as a .geo script), a header without elements, and a 2-D
+  // mesh read as 3-D.
   const std::string garbage = (dir / "garbage.msh").string();
   std::ofstream(garbage) << "hello\n";
-  EXPECT_NE(import_error<2>(garbage).find("Gmsh could not read it"), std::string::npos)
+  EXPECT_NE(import_error<2>(garbage).find("does not begin with $MeshFormat"), std::string::npos)
       << import_error<2>(garbage);
   const std::string empty = (dir / "empty.msh").string();
-  std::ofstream{empty};
+  std::ofstream(empty) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
   EXPECT_NE(import_error<2>(empty).find("no elements of dimension 2"), std::string::npos)
       << import_error<2>(empty);
   EXPECT_NE(import_error<3>(good.string()).find("no elements of dimension 3"), std::string::npos);

@@ -55,13 +55,25 @@ std::string gmsh_errors(const std::vector<std::string>& log) {
   return out;
 }
 
-/// Opens the file in Gmsh. Gmsh reports a corrupt file in its log (gmsh_session.hpp: errors do not
-/// throw), a missing one only on its silenced terminal, so existence is checked first.
-void open_in_gmsh(GmshSession& gmsh, const std::string& file, const std::string& json_path) {
-  namespace fs = std::filesystem;
+/// Checks that `file` exists, is readable and starts like a .msh file (formats 2 and 4, ASCII or
+/// binary, begin with "$MeshFormat"): Gmsh would run any other text as a .geo script, and reports a
+/// missing file only on its silenced terminal.
+void check_msh_file(const std::string& file, const std::string& json_path) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) fail(json_path, file, "no such file", "a Gmsh .msh file");
-  if (!std::ifstream(file).good()) fail(json_path, file, "not readable", "a readable Gmsh .msh file");
+  if (!std::filesystem::is_regular_file(file, ec)) fail(json_path, file, "no such file", "a Gmsh .msh file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in.good()) fail(json_path, file, "not readable", "a readable Gmsh .msh file");
+  std::string head(11, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  if (head != "$MeshFormat")
+    fail(json_path, file, "not a Gmsh mesh: it does not begin with $MeshFormat",
+         "a Gmsh .msh file (format 2 or 4)");
+}
+
+/// Opens the file in Gmsh; Gmsh reports a corrupt file in its log (gmsh_session.hpp: errors do not
+/// throw).
+void open_in_gmsh(GmshSession& gmsh, const std::string& file, const std::string& json_path) {
+  check_msh_file(file, json_path);
   gmsh.clear();
   gmsh.start_log();
   gmsh.open(file);
