@@ -41,65 +41,80 @@ int face_on_side(int axis, double sign) {
 constexpr std::array<std::array<const char*, 2>, 3> kSides = {
     {{"left", "right"}, {"bottom", "top"}, {"back", "front"}}};
 
+/// A D-dimensional box of counts: flat index (first axis fastest) <-> multi-index.
+template <int D>
+struct Lattice {
+  std::array<Index, D> size{};
+  Index total() const {
+    Index n = 1;
+    for (Index s : size) n *= s;
+    return n;
+  }
+  Index flat(const std::array<Index, D>& i) const {
+    Index id = 0;
+    for (int a = D - 1; a >= 0; --a) id = id * size[a] + i[a];
+    return id;
+  }
+  std::array<Index, D> split(Index flat) const {
+    std::array<Index, D> i{};
+    for (int a = 0; a < D; ++a) i[a] = flat % size[a], flat /= size[a];
+    return i;
+  }
+};
+
+/// Nodes on the lattice of per-axis coordinates, and the side node sets.
+template <int D>
+void structured_nodes(const std::array<std::vector<double>, D>& coordinates, const Lattice<D>& nodes,
+                      Mesh<D>& mesh) {
+  mesh.nodes.resize(nodes.total());
+  for (Index n = 0; n < nodes.total(); ++n) {
+    const auto i = nodes.split(n);
+    for (int a = 0; a < D; ++a) {
+      mesh.nodes[n][a] = coordinates[a][i[a]];
+      if (i[a] == 0) mesh.node_sets[kSides[a][0]].push_back(n);
+      if (i[a] == nodes.size[a] - 1) mesh.node_sets[kSides[a][1]].push_back(n);
+    }
+  }
+}
+
+/// Elements (cell (c_a): lattice nodes p c_a + tensor index of each local node) and side faces.
+template <class E>
+void structured_elements(const Lattice<E::kDim>& cells, const Lattice<E::kDim>& nodes, Mesh<E::kDim>& mesh) {
+  constexpr int D = E::kDim;
+  for (Index e = 0; e < cells.total(); ++e) {
+    const auto cell = cells.split(e);
+    for (int i = 0; i < E::kNodes; ++i) {
+      std::array<Index, D> node{};
+      for (int a = 0; a < D; ++a) node[a] = E::kDegree * cell[a] + E::kTensor[i][a];
+      mesh.connectivity.push_back(nodes.flat(node));
+    }
+    for (int a = 0; a < D; ++a) {
+      if (cell[a] == 0) mesh.boundary_faces[kSides[a][0]].push_back({e, face_on_side<E>(a, -1.0)});
+      if (cell[a] == cells.size[a] - 1)
+        mesh.boundary_faces[kSides[a][1]].push_back({e, face_on_side<E>(a, 1.0)});
+    }
+  }
+}
+
 /// Structured mesh of element type E (Q4, Q9, Hex8) with tensor local numbering E::kTensor.
 template <class E>
 Mesh<E::kDim> structured(const std::array<AxisSpacing, E::kDim>& axes) {
-  constexpr int D = E::kDim, p = E::kDegree;
+  constexpr int D = E::kDim;
   Mesh<D> mesh;
   mesh.shape = E::kShape;
   mesh.nodes_per_element = E::kNodes;
-  std::array<std::vector<double>, D> lat;
-  std::array<Index, D> nn{}, ne{};
+  std::array<std::vector<double>, D> coordinates;
+  Lattice<D> cells, nodes;
   for (int a = 0; a < D; ++a) {
     require(axes[a].cells() >= 1, "every axis needs at least one cell");
     for (int c = 0; c < axes[a].cells(); ++c)
       require(axes[a].breaks[c + 1] > axes[a].breaks[c], "breaks must ascend");
-    lat[a] = lattice(axes[a], p);
-    nn[a] = static_cast<Index>(lat[a].size());
-    ne[a] = axes[a].cells();
+    coordinates[a] = lattice(axes[a], E::kDegree);
+    nodes.size[a] = static_cast<Index>(coordinates[a].size());
+    cells.size[a] = axes[a].cells();
   }
-  auto node_id = [&](const std::array<Index, D>& ijk) {
-    Index id = 0;
-    for (int a = D - 1; a >= 0; --a) id = id * nn[a] + ijk[a];
-    return id;
-  };
-  // Nodes, x fastest.
-  Index total = 1;
-  for (int a = 0; a < D; ++a) total *= nn[a];
-  mesh.nodes.resize(total);
-  for (Index n = 0; n < total; ++n) {
-    Index rest = n;
-    for (int a = 0; a < D; ++a) {
-      mesh.nodes[n][a] = lat[a][rest % nn[a]];
-      rest /= nn[a];
-    }
-  }
-  // Elements, x fastest; sides.
-  Index elements = 1;
-  for (int a = 0; a < D; ++a) elements *= ne[a];
-  for (Index e = 0; e < elements; ++e) {
-    std::array<Index, D> cell{};
-    Index rest = e;
-    for (int a = 0; a < D; ++a) cell[a] = rest % ne[a], rest /= ne[a];
-    for (int i = 0; i < E::kNodes; ++i) {
-      std::array<Index, D> ijk{};
-      for (int a = 0; a < D; ++a) ijk[a] = p * cell[a] + E::kTensor[i][a];
-      mesh.connectivity.push_back(node_id(ijk));
-    }
-    for (int a = 0; a < D; ++a) {
-      if (cell[a] == 0) mesh.boundary_faces[kSides[a][0]].push_back({e, face_on_side<E>(a, -1.0)});
-      if (cell[a] == ne[a] - 1) mesh.boundary_faces[kSides[a][1]].push_back({e, face_on_side<E>(a, 1.0)});
-    }
-  }
-  for (Index n = 0; n < total; ++n) {
-    Index rest = n;
-    for (int a = 0; a < D; ++a) {
-      const Index i = rest % nn[a];
-      rest /= nn[a];
-      if (i == 0) mesh.node_sets[kSides[a][0]].push_back(n);
-      if (i == nn[a] - 1) mesh.node_sets[kSides[a][1]].push_back(n);
-    }
-  }
+  structured_nodes<D>(coordinates, nodes, mesh);
+  structured_elements<E>(cells, nodes, mesh);
   return mesh;
 }
 
