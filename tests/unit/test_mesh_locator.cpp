@@ -127,6 +127,13 @@ TEST(PointLocator, BoundaryToleranceAndOutsidePoints) {
   EXPECT_NEAR(loc->xi[0], 1.0, 1e-12);
 }
 
+TEST(PointLocator, EmptyMeshHoldsNoPoint) {
+  Mesh<2> empty;
+  empty.nodes_per_element = 9;
+  const PointLocator<2> locator(empty, empty.nodes);
+  EXPECT_FALSE(locator.locate(Vec<2>(0.0, 0.0)).has_value());
+}
+
 TEST(PointLocator, ConcurrentCallsAgreeWithSerialAndSpeedOnTestAJ2) {
   const Mesh<2> m = test_a_mesh(2);
   const PointLocator<2> locator(m, m.nodes);

@@ -34,13 +34,13 @@ void PointLocator<D>::update(std::span<const Vec<D>> node_coordinates) {
 }
 
 template <int D>
-void PointLocator<D>::build_bins() {
+Vec<D> PointLocator<D>::element_boxes() {
   const Index ne = mesh_->element_count();
   const double bulge = visit_element_type_of_dim<D>(
       mesh_->shape, [](auto e) { return decltype(e)::kDegree == 2 ? kQuadraticBulge : 0.0; });
   box_low_.assign(ne, Vec<D>::Constant(1e300));
   box_high_.assign(ne, Vec<D>::Constant(-1e300));
-  Vec<D> low = Vec<D>::Constant(1e300), high = Vec<D>::Constant(-1e300), mean = Vec<D>::Zero();
+  Vec<D> mean = Vec<D>::Zero();
   for (Index e = 0; e < ne; ++e) {
     for (Index n : mesh_->element_nodes(e)) {
       box_low_[e] = box_low_[e].cwiseMin(coordinates_[n]);
@@ -51,22 +51,34 @@ void PointLocator<D>::build_bins() {
     // Pad: the bulge, plus the physical size of the xi tolerance (about tolerance * extent / 2).
     const Vec<D> pad = (bulge + tolerance_ + 1e-12) * Vec<D>::Constant(extent.maxCoeff());
     box_low_[e] -= pad, box_high_[e] += pad;
-    low = low.cwiseMin(box_low_[e]), high = high.cwiseMax(box_high_[e]);
+  }
+  return mean;
+}
+
+template <int D>
+void PointLocator<D>::build_bins() {
+  const Index ne = mesh_->element_count();
+  const Vec<D> mean = element_boxes();
+  Vec<D> low = Vec<D>::Zero(), high = Vec<D>::Ones();
+  if (ne > 0) {
+    low = Vec<D>::Constant(1e300), high = Vec<D>::Constant(-1e300);
+    for (Index e = 0; e < ne; ++e) low = low.cwiseMin(box_low_[e]), high = high.cwiseMax(box_high_[e]);
   }
   // About one bin per element: bins of the mean element extent, at most 4 ne bins in all.
   double total = 1.0;
   for (int a = 0; a < D; ++a) {
-    bins_[a] = std::max(1, static_cast<int>(std::lround((high[a] - low[a]) / std::max(mean[a], 1e-300))));
+    const double count = ne > 0 ? (high[a] - low[a]) / std::max(mean[a], 1e-300) : 1.0;
+    bins_[a] = static_cast<int>(std::clamp(std::round(count), 1.0, 1e6));
     total *= bins_[a];
   }
   for (int a = 0; a < D && total > 4.0 * std::max<Index>(ne, 1); ++a) {
-    const double shrink = std::pow(total / (4.0 * ne), 1.0 / D);
+    const double shrink = std::pow(total / (4.0 * std::max<Index>(ne, 1)), 1.0 / D);
     total /= bins_[a];
     bins_[a] = std::max(1, static_cast<int>(bins_[a] / shrink));
     total *= bins_[a];
   }
-  origin_ = ne > 0 ? low : Vec<D>::Zero();
-  for (int a = 0; a < D; ++a) bin_size_[a] = ne > 0 ? std::max((high[a] - low[a]) / bins_[a], 1e-300) : 1.0;
+  origin_ = low;
+  for (int a = 0; a < D; ++a) bin_size_[a] = std::max((high[a] - low[a]) / bins_[a], 1e-300);
   fill_bins();
 }
 

@@ -57,6 +57,7 @@ class PointLocator {
   std::optional<Location<D>> search_as(const Vec<D>& x, Index hint) const;
   Index bin_of(const Vec<D>& x) const;                          // -1 outside the bins
   std::array<std::pair<int, int>, D> bin_range(Index e) const;  // bins touched by element e's box
+  Vec<D> element_boxes();  // fills box_low_/box_high_; returns the mean element extent
   void build_bins();
   void fill_bins();
 
