@@ -127,6 +127,23 @@ TEST(PointLocator, BoundaryToleranceAndOutsidePoints) {
   EXPECT_NEAR(loc->xi[0], 1.0, 1e-12);
 }
 
+TEST(PointLocator, UpdateFollowsAMovedConfiguration) {
+  // The mesh moved by the shear x += 0.3 y: a point x0 of the reference configuration is found at
+  // x0 + (0.3 y0, 0) in the same element with the same xi after update().
+  const Mesh<2> m = test_a_mesh(1);
+  PointLocator<2> locator(m, m.nodes);
+  std::vector<Vec<2>> moved = m.nodes;
+  for (auto& x : moved) x[0] += 0.3 * x[1];
+  const Vec<2> x0(3.37, 0.41);
+  const auto before = locator.locate(x0);
+  locator.update(moved);
+  const auto after = locator.locate(Vec<2>(x0[0] + 0.3 * x0[1], x0[1]));
+  ASSERT_TRUE(before.has_value() && after.has_value());
+  EXPECT_EQ(after->element, before->element);
+  EXPECT_LT((after->xi - before->xi).norm(), 1e-12);
+  EXPECT_FALSE(locator.locate(Vec<2>(x0[0], -1.7)).has_value());  // below the plane y = -1.6
+}
+
 TEST(PointLocator, EmptyMeshHoldsNoPoint) {
   Mesh<2> empty;
   empty.nodes_per_element = 9;
