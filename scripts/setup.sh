@@ -4,9 +4,10 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-# zlib1g-dev: compressed .vtu output; python3-vtk9 and python3-meshio: the tests read our .vtu
-# files back with VTK's own reader and with meshio. (libfmt-dev was listed once but never used.)
-packages=(build-essential cmake libeigen3-dev nlohmann-json3-dev libcli11-dev libhdf5-dev zlib1g-dev
+# zlib1g-dev: compressed .vtu output; libgmsh-dev: Gmsh .msh mesh import (src/matpoint/mesh);
+# python3-vtk9 and python3-meshio: the tests read our .vtu files back with VTK's own reader and with
+# meshio. (libfmt-dev was listed once but never used.)
+packages=(build-essential cmake libeigen3-dev nlohmann-json3-dev libcli11-dev libhdf5-dev zlib1g-dev libgmsh-dev
           libgtest-dev libgmock-dev libbenchmark-dev
           python3 python3-matplotlib python3-numpy python3-meshio python3-h5py python3-vtk9)
 
