@@ -1,0 +1,160 @@
+// The nonlinear system of one step of Aulisa & Capodaglio's particle-Newmark implicit MPM (§3.3,
+// eqs. (26)-(28), (32)): unknowns u~ at every mesh node (node-major: dof = node * D + component),
+// blocks
+//   - one per active element: the particles' residual (20)-(25) plus the soft stiffness (26) when
+//     C_E > 0, Jacobian by forward-mode AD (ad_jacobian.hpp);
+//   - one per inactive element with nodes in I_ib: the lumped-mass equations (27) of those nodes
+//     (linear and diagonal, so the Jacobian is the node masses themselves);
+// assembled by the generic SparseAssembly; Dirichlet dofs are identity rows. Fixed during the
+// step's Newton iterations: host elements, active set, flags, switches (extraction §5).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "matpoint/implicit/active_set.hpp"
+#include "matpoint/implicit/ad_jacobian.hpp"
+#include "matpoint/implicit/particle_newmark/inactive_mass.hpp"
+#include "matpoint/implicit/particle_newmark/particle_residual.hpp"
+#include "matpoint/implicit/particle_newmark/soft_stiffness.hpp"
+#include "matpoint/implicit/sparse_assembly.hpp"
+#include "matpoint/mesh/mesh.hpp"
+
+namespace matpoint::implicit {
+
+template <class E, class Material>
+class ParticleNewmarkSystem {
+ public:
+  static constexpr int kDim = E::kDim, kNodes = E::kNodes, kDofs = kNodes * kDim;
+
+  /// What one step fixes. q has one block per active element (in set.active_elements order);
+  /// soft_stiffness[k] = mu C_E of active element k (0: none); receding[k]: C_c per face of active
+  /// element k (empty: none anywhere); dirichlet: one flag per dof.
+  struct StepData {
+    const mesh::Mesh<kDim>* mesh = nullptr;
+    std::span<const Vec<kDim>> reference_nodes;  // x~ (the mesh's nodes in the uncoupled case)
+    const ActiveSet* set = nullptr;
+    const ParticleQuadrature<E>* quadrature = nullptr;
+    std::span<const Material> materials;
+    std::vector<double> soft_stiffness;
+    std::vector<FaceCoefficients<E>> receding;
+    std::span<const char> dirichlet;
+    ParticleResidualOptions options;
+    int gauss_points_per_direction = 3;  // soft stiffness and lumped mass (the paper's 3 x 3 for Q9)
+  };
+
+  /// Builds the blocks and the sparse pattern for this step (once per active set).
+  void setup(StepData data);
+
+  /// R(u~) and, when K is not null, the Jacobian; Dirichlet rows as identity with zero residual.
+  bool assemble(const Eigen::VectorXd& u, Eigen::VectorXd& R, SparseMatrix* K) const;
+
+  [[nodiscard]] const SparseAssembly& assembly() const { return assembly_; }
+  [[nodiscard]] Index dof_count() const { return assembly_.dof_count(); }
+
+  /// The residual and Jacobian (row-major) of active element k alone at its dofs' values u_e.
+  void element_residual_and_jacobian(Index k, const double* u_e, double* r, double* K) const;
+  void element_residual(Index k, const double* u_e, double* r) const;
+
+ private:
+  template <class S>
+  void active_residual(Index k, const S* u, S* r) const;
+
+  StepData data_;
+  Index active_ = 0;
+  std::vector<GaussGeometry<E>> soft_geometry_;  // per active element with soft stiffness
+  std::vector<std::vector<double>> mass_block_;  // per inactive block: the mass of each of its dofs
+  SparseAssembly assembly_;
+};
+
+template <class E, class Material>
+void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
+  data_ = std::move(data);
+  const auto& mesh = *data_.mesh;
+  const auto& set = *data_.set;
+  active_ = static_cast<Index>(set.active_elements.size());
+  std::vector<Index> offsets{0}, dofs;
+  soft_geometry_.assign(static_cast<std::size_t>(active_), {});
+  for (Index k = 0; k < active_; ++k) {
+    const Index e = set.active_elements[static_cast<std::size_t>(k)];
+    for (const Index node : mesh.element_nodes(e))
+      for (int i = 0; i < kDim; ++i) dofs.push_back(node * kDim + i);
+    offsets.push_back(static_cast<Index>(dofs.size()));
+    if (data_.soft_stiffness[static_cast<std::size_t>(k)] > 0.0)
+      soft_geometry_[static_cast<std::size_t>(k)] = gauss_geometry<E>(
+          gather_nodes<E>(data_.reference_nodes, mesh.element_nodes(e)), data_.gauss_points_per_direction);
+  }
+  // Inactive elements: the mass equations (27) of their I_ib nodes.
+  mass_block_.clear();
+  for (const Index e : set.inactive_elements) {
+    const auto nodes = mesh.element_nodes(e);
+    const auto m = lumped_node_masses<E>(
+        gauss_geometry<E>(gather_nodes<E>(data_.reference_nodes, nodes), data_.gauss_points_per_direction));
+    std::vector<double> masses;
+    for (int I = 0; I < kNodes; ++I)
+      if (set.node_active[static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)])] == 0)
+        for (int i = 0; i < kDim; ++i) {
+          dofs.push_back(nodes[static_cast<std::size_t>(I)] * kDim + i);
+          masses.push_back(m[I]);
+        }
+    if (masses.empty()) continue;
+    offsets.push_back(static_cast<Index>(dofs.size()));
+    mass_block_.push_back(std::move(masses));
+  }
+  assembly_.build(mesh.node_count() * kDim, offsets, dofs, data_.dirichlet);
+}
+
+template <class E, class Material>
+template <class S>
+void ParticleNewmarkSystem<E, Material>::active_residual(Index k, const S* u, S* r) const {
+  const auto& q = *data_.quadrature;
+  static const FaceCoefficients<E> kNone{};
+  const FaceCoefficients<E>& receding =
+      data_.receding.empty() ? kNone : data_.receding[static_cast<std::size_t>(k)];
+  add_particle_residual<E>(q, q.begin[static_cast<std::size_t>(k)], q.begin[static_cast<std::size_t>(k) + 1],
+                           data_.materials.data(), receding, data_.options, u, r);
+  const double soft = data_.soft_stiffness[static_cast<std::size_t>(k)];
+  if (soft > 0.0) add_soft_stiffness_residual<E>(soft_geometry_[static_cast<std::size_t>(k)], soft, u, r);
+}
+
+template <class E, class Material>
+void ParticleNewmarkSystem<E, Material>::element_residual_and_jacobian(Index k, const double* u_e, double* r,
+                                                                       double* K) const {
+  residual_and_jacobian<kDofs>(
+      u_e, [&](const auto* u, auto* res) { active_residual(k, u, res); }, r, K);
+}
+
+template <class E, class Material>
+void ParticleNewmarkSystem<E, Material>::element_residual(Index k, const double* u_e, double* r) const {
+  residual_only<kDofs>(
+      u_e, [&](const double* u, double* res) { active_residual(k, u, res); }, r);
+}
+
+template <class E, class Material>
+bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eigen::VectorXd& R,
+                                                  SparseMatrix* K) const {
+  assembly_.assemble(
+      [&](Index b, std::span<const Index> dofs, double* r, double* k) {
+        if (b < active_) {
+          std::array<double, kDofs> u_e;
+          for (int i = 0; i < kDofs; ++i)
+            u_e[static_cast<std::size_t>(i)] = u[dofs[static_cast<std::size_t>(i)]];
+          if (k != nullptr)
+            element_residual_and_jacobian(b, u_e.data(), r, k);
+          else
+            element_residual(b, u_e.data(), r);
+          return;
+        }
+        // (27): r_i = m_i u_i, K = diag(m).
+        const auto& m = mass_block_[static_cast<std::size_t>(b - active_)];
+        const std::size_t n = dofs.size();
+        for (std::size_t i = 0; i < n; ++i) {
+          r[i] = m[i] * u[dofs[i]];
+          if (k != nullptr) k[i * n + i] = m[i];
+        }
+      },
+      R, K);
+  return R.allFinite();
+}
+
+}  // namespace matpoint::implicit
