@@ -9,6 +9,7 @@
 // step's Newton iterations: host elements, active set, flags, switches (extraction §5).
 #pragma once
 
+#include <algorithm>
 #include <span>
 #include <vector>
 
@@ -43,7 +44,8 @@ class ParticleNewmarkSystem {
     int gauss_points_per_direction = 3;  // soft stiffness and lumped mass (the paper's 3 x 3 for Q9)
   };
 
-  /// Builds the blocks and the sparse pattern for this step (once per active set).
+  /// Builds the blocks, and the sparse pattern when they differ from the last call's (a new active
+  /// set); the pattern version, hence the solver's symbolic analysis, survives otherwise.
   void setup(StepData data);
 
   /// R(u~) and, when K is not null, the Jacobian; Dirichlet rows as identity with zero residual.
@@ -65,6 +67,8 @@ class ParticleNewmarkSystem {
   std::vector<GaussGeometry<E>> soft_geometry_;  // per active element with soft stiffness
   std::vector<std::vector<double>> mass_block_;  // per inactive block: the mass of each of its dofs
   SparseAssembly assembly_;
+  std::vector<Index> offsets_, dofs_;  // the blocks of the current pattern
+  std::vector<char> dirichlet_;
 };
 
 template <class E, class Material>
@@ -101,7 +105,16 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
     offsets.push_back(static_cast<Index>(dofs.size()));
     mass_block_.push_back(std::move(masses));
   }
+  // The same blocks and Dirichlet dofs as the last step: keep the pattern (and with it the linear
+  // solver's symbolic analysis, keyed on pattern_version()).
+  const bool same =
+      offsets == offsets_ && dofs == dofs_ &&
+      std::equal(data_.dirichlet.begin(), data_.dirichlet.end(), dirichlet_.begin(), dirichlet_.end());
+  if (same) return;
   assembly_.build(mesh.node_count() * kDim, offsets, dofs, data_.dirichlet);
+  offsets_ = std::move(offsets);
+  dofs_ = std::move(dofs);
+  dirichlet_.assign(data_.dirichlet.begin(), data_.dirichlet.end());
 }
 
 template <class E, class Material>
