@@ -190,6 +190,29 @@ TEST(ImplicitSystem, AssembledJacobianMatchesCentralDifferences) {
   EXPECT_GT(patch.set.inactive_elements.size(), 0u);
 }
 
+TEST(ImplicitLinearSolver, EveryBackEndSolvesTheAssembledPatchJacobian) {
+  // The implicit MPM matrix itself (nonsymmetric with the receding correction, Dirichlet identity
+  // rows, diagonal inactive-node rows), with a chosen solution x*: b = K x*.
+  const Patch patch(100.0, true);
+  const Index n = patch.system.dof_count();
+  Eigen::VectorXd u = Eigen::VectorXd::Constant(n, 0.0), R, x;
+  SparseMatrix K;
+  ASSERT_TRUE(patch.system.assemble(u, R, &K));
+  Eigen::VectorXd x_exact(n);
+  for (Index i = 0; i < n; ++i) x_exact[i] = std::cos(0.3 * static_cast<double>(i));
+  const Eigen::VectorXd b = K * x_exact;
+  for (const auto kind : {LinearSolverKind::Umfpack, LinearSolverKind::Klu, LinearSolverKind::BicgstabIlut,
+                          LinearSolverKind::GmresIlut}) {
+    LinearSolverOptions options;
+    options.kind = kind;
+    options.relative_tolerance = 1e-14;
+    const auto solver = make_linear_solver(options);
+    ASSERT_TRUE(solver->factorize(K, patch.system.assembly().pattern_version()) && solver->solve(b, x))
+        << solver->name() << ": " << solver->message();
+    EXPECT_LT((x - x_exact).norm(), 1e-10 * x_exact.norm()) << solver->name();
+  }
+}
+
 TEST(ImplicitSystem, TaylorRemainderOfTheAssembledResidualIsSecondOrder) {
   // R(u + t d) - R(u) - t K d = O(t^2) exactly when K = dR/du (Taylor): halving t divides the
   // remainder by 4; an inexact K would leave a first-order part that halves only by 2.
