@@ -8,8 +8,12 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <chrono>
+#include <map>
+
 #include "matpoint/implicit/linear_solver.hpp"
 #include "matpoint/implicit/particle_newmark/element_flags.hpp"
+#include "matpoint/implicit/particle_newmark/particle_newmark_stepper.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_system.hpp"
 #include "matpoint/material/neo_hookean.hpp"
 #include "matpoint/mesh/structured_mesh.hpp"
@@ -127,5 +131,70 @@ BENCHMARK(BM_AssemblyWithJacobian)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AssemblyResidualOnly)->Arg(80)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FactorizeSolve)->ArgsProduct({{40, 80}, {0, 1, 2, 3}})->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+// One implicit step of a disk (R = 0.5 m, E = 4.2e6 Pa, nu = 0.4, rho = 1000: Aulisa & Capodaglio's
+// Test A material E1) resting on a clamped floor with the receding correction, on a cells x cells/2
+// Q9 mesh of [0, 4] x [0, 2], 4 x 4 particles per element area: time per step and its shares.
+namespace {
+
+void BM_ParticleNewmarkStep(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(1)));
+  const int cells = static_cast<int>(state.range(0));
+  const auto mesh =
+      mesh::structured_rectangle(mesh::ElementShape::Q9, mesh::AxisSpacing::uniform(0, 4, cells),
+                                 mesh::AxisSpacing::uniform(0, 2, cells / 2));
+  const double E = 4.2e6, nu = 0.4, rho = 1000.0, h = 4.0 / cells;
+  const NeoHookean material{rho, E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+  ParticleNewmarkOptions<2> options;
+  options.gravity = Vec<2>(0.0, -9.81);
+  options.soft_stiffness = SoftStiffnessTable{{{5, 1e-4}, {9, 1e-8}}};
+  std::vector<char> dirichlet(static_cast<std::size_t>(mesh.node_count() * 2), 0);
+  for (const auto& side : {"bottom", "left", "right"})
+    for (const Index n : mesh.node_sets.at(side)) dirichlet[2 * n] = dirichlet[2 * n + 1] = 1;
+  std::map<std::pair<Index, int>, double> receding;
+  for (const auto& [e, f] : mesh.boundary_faces.at("bottom")) receding[{e, f}] = 0.5;
+  ParticleNewmarkStepper<Q9, NeoHookean> stepper(mesh, {material}, options, dirichlet, receding);
+  ParticleSet<2> particles;
+  const double spacing = h / 4, radius = 0.5;
+  const Vec<2> centre(2.0, radius + 0.5 * spacing);
+  for (double y = centre[1] - radius + 0.5 * spacing; y < centre[1] + radius; y += spacing)
+    for (double x = centre[0] - radius + 0.5 * spacing; x < centre[0] + radius; x += spacing)
+      if ((Vec<2>(x, y) - centre).norm() < radius)
+        particles.add(Vec<2>(x, y), Vec<2>(0.2, 0.0), rho * spacing * spacing, spacing * spacing,
+                      Vec<2>::Constant(spacing), 0, 0);
+  ImplicitParticleState<2> extra;
+  stepper.initialize(particles, extra);
+  double assembly = 0.0, seconds = 0.0;
+  long iterations = 0, steps = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const StepReport report = stepper.step(particles, extra, 0.01);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!report.ok()) {
+      state.SkipWithError(report.newton.message.c_str());
+      return;
+    }
+    assembly += report.assembly_seconds;
+    iterations += report.newton.iterations();
+    ++steps;
+  }
+  const auto& s = stepper.linear_solver().stats();
+  state.counters["particles"] = static_cast<double>(particles.size());
+  state.counters["newton_per_step"] = static_cast<double>(iterations) / static_cast<double>(steps);
+  state.counters["assembly_share"] = assembly / seconds;
+  state.counters["factorize_share"] = (s.analyze_seconds + s.factorize_seconds) / seconds;
+  state.counters["solve_share"] = s.solve_seconds / seconds;
+  state.counters["analyses"] = static_cast<double>(s.analyses);
+  state.SetItemsProcessed(iterations * static_cast<long>(particles.size()));
+}
+
+BENCHMARK(BM_ParticleNewmarkStep)
+    ->Args({40, 1})
+    ->Args({80, 1})
+    ->Args({80, 2})
+    ->Iterations(5)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -9,6 +9,7 @@
 // implicit extras (acceleration, host element, xi).
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <optional>
@@ -55,8 +56,8 @@ struct ParticleNewmarkOptions {
 struct StepReport {
   NewtonResult newton;
   Index active_elements = 0;
-  Index lost_particles = 0;  // particles outside the mesh (the step is refused, A22)
-  double assembly_seconds = 0.0;
+  Index lost_particles = 0;       // particles outside the mesh (the step is refused, A22)
+  double assembly_seconds = 0.0;  // residual + Jacobian assembly (the linear solver keeps its own times)
   [[nodiscard]] bool ok() const { return lost_particles == 0 && newton.converged(); }
 };
 
@@ -199,9 +200,14 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   system_.setup(std::move(data));
 
   Eigen::VectorXd u = Eigen::VectorXd::Zero(system_.dof_count());  // u~ = 0 (§6)
-  report.newton = newton_solve([&](const Eigen::VectorXd& x, Eigen::VectorXd& R,
-                                   SparseMatrix* K) { return system_.assemble(x, R, K); },
-                               system_.assembly().pattern_version(), *solver_, u, options_.newton);
+  const auto timed_assembly = [&](const Eigen::VectorXd& x, Eigen::VectorXd& R, SparseMatrix* K) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool ok = system_.assemble(x, R, K);
+    report.assembly_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return ok;
+  };
+  report.newton =
+      newton_solve(timed_assembly, system_.assembly().pattern_version(), *solver_, u, options_.newton);
   if (report.newton.converged()) commit(particles, state, u, dt);
   return report;
 }

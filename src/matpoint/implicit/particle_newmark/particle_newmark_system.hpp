@@ -3,8 +3,8 @@
 // blocks
 //   - one per active element: the particles' residual (20)-(25) plus the soft stiffness (26) when
 //     C_E > 0, Jacobian by forward-mode AD (ad_jacobian.hpp);
-//   - one per inactive element with nodes in I_ib: the lumped-mass equations (27) of those nodes
-//     (linear and diagonal, so the Jacobian is the node masses themselves);
+//   - one per dof of the nodes in I_ib: the lumped-mass equation (27) summed over the node's inactive
+//     elements (linear and diagonal, so the Jacobian is the node mass itself);
 // assembled by the generic SparseAssembly; Dirichlet dofs are identity rows. Fixed during the
 // step's Newton iterations: host elements, active set, flags, switches (extraction §5).
 #pragma once
@@ -65,7 +65,7 @@ class ParticleNewmarkSystem {
   StepData data_;
   Index active_ = 0;
   std::vector<GaussGeometry<E>> soft_geometry_;  // per active element with soft stiffness
-  std::vector<std::vector<double>> mass_block_;  // per inactive block: the mass of each of its dofs
+  std::vector<double> mass_dof_;                 // per inactive-node block (one dof): its lumped mass
   SparseAssembly assembly_;
   std::vector<Index> offsets_, dofs_;  // the blocks of the current pattern
   std::vector<char> dirichlet_;
@@ -88,23 +88,25 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
       soft_geometry_[static_cast<std::size_t>(k)] = gauss_geometry<E>(
           gather_nodes<E>(data_.reference_nodes, mesh.element_nodes(e)), data_.gauss_points_per_direction);
   }
-  // Inactive elements: the mass equations (27) of their I_ib nodes.
-  mass_block_.clear();
+  // Inactive elements: the mass equations (27) of their I_ib nodes, summed per node (a row-sum
+  // lumped mass), one 1 x 1 block per dof: the pattern of these rows is the diagonal alone (blocks
+  // over an element's nodes would add their structural zeros to the factorisation).
+  std::vector<double> node_mass(static_cast<std::size_t>(mesh.node_count()), 0.0);
   for (const Index e : set.inactive_elements) {
     const auto nodes = mesh.element_nodes(e);
     const auto m = lumped_node_masses<E>(
         gauss_geometry<E>(gather_nodes<E>(data_.reference_nodes, nodes), data_.gauss_points_per_direction));
-    std::vector<double> masses;
     for (int I = 0; I < kNodes; ++I)
-      if (set.node_active[static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)])] == 0)
-        for (int i = 0; i < kDim; ++i) {
-          dofs.push_back(nodes[static_cast<std::size_t>(I)] * kDim + i);
-          masses.push_back(m[I]);
-        }
-    if (masses.empty()) continue;
-    offsets.push_back(static_cast<Index>(dofs.size()));
-    mass_block_.push_back(std::move(masses));
+      node_mass[static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)])] += m[I];
   }
+  mass_dof_.clear();
+  for (Index node = 0; node < mesh.node_count(); ++node)
+    if (set.node_active[static_cast<std::size_t>(node)] == 0)
+      for (int i = 0; i < kDim; ++i) {
+        dofs.push_back(node * kDim + i);
+        offsets.push_back(static_cast<Index>(dofs.size()));
+        mass_dof_.push_back(node_mass[static_cast<std::size_t>(node)]);
+      }
   // The same blocks and Dirichlet dofs as the last step: keep the pattern (and with it the linear
   // solver's symbolic analysis, keyed on pattern_version()).
   const bool same =
@@ -158,13 +160,10 @@ bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eige
             element_residual(b, u_e.data(), r);
           return;
         }
-        // (27): r_i = m_i u_i, K = diag(m).
-        const auto& m = mass_block_[static_cast<std::size_t>(b - active_)];
-        const std::size_t n = dofs.size();
-        for (std::size_t i = 0; i < n; ++i) {
-          r[i] = m[i] * u[dofs[i]];
-          if (k != nullptr) k[i * n + i] = m[i];
-        }
+        // (27): r = m u for one dof of an I_ib node, dr/du = m.
+        const double m = mass_dof_[static_cast<std::size_t>(b - active_)];
+        r[0] = m * u[dofs[0]];
+        if (k != nullptr) k[0] = m;
       },
       R, K);
   return R.allFinite();
