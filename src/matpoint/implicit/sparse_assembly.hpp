@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -68,7 +69,14 @@ template <class Kernel>
 void SparseAssembly::assemble(Kernel&& kernel, Eigen::VectorXd& R, SparseMatrix* K) const {
   R.setZero(dofs_);
   if (K != nullptr) {
-    if (K->nonZeros() != pattern_.nonZeros() || K->rows() != dofs_) *K = pattern_;
+    // K keeps its storage while it has this pattern (every Newton iteration of a step).
+    const bool same_pattern =
+        K->isCompressed() && K->rows() == dofs_ && K->cols() == dofs_ &&
+        K->nonZeros() == pattern_.nonZeros() &&
+        std::equal(pattern_.outerIndexPtr(), pattern_.outerIndexPtr() + dofs_ + 1, K->outerIndexPtr()) &&
+        std::equal(pattern_.innerIndexPtr(), pattern_.innerIndexPtr() + pattern_.nonZeros(),
+                   K->innerIndexPtr());
+    if (!same_pattern) *K = pattern_;
     std::fill(K->valuePtr(), K->valuePtr() + K->nonZeros(), 0.0);
   }
   double* values = K != nullptr ? K->valuePtr() : nullptr;
