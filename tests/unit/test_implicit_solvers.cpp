@@ -294,6 +294,39 @@ TEST(ImplicitNewton, ConvergesQuadraticallyOnADeformedPatch) {
   EXPECT_LT(result.final_residual_norm, 1e-10 * h[0].residual_norm);
 }
 
+TEST(ImplicitNewton, LineSearchMakesTheResidualDecreaseAndTheResidualTestStopsEarly) {
+  // Under a load where full Newton steps first raise |R| (see the quadratic test's history at 300),
+  // the backtracking search accepts only steps with |R(u + s du)| <= (1 - 1e-4 s) |R(u)| (Armijo),
+  // so the recorded residuals decrease monotonically, and it still converges.
+  const Patch patch(300.0, true);
+  auto solver = make_linear_solver();
+  const auto assemble = [&](const Eigen::VectorXd& x, Eigen::VectorXd& R, SparseMatrix* K) {
+    return patch.system.assemble(x, R, K);
+  };
+  NewtonOptions options;
+  options.components = 2;
+  options.line_search = true;
+  options.max_iterations = 30;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(patch.system.dof_count());
+  const NewtonResult searched =
+      newton_solve(assemble, patch.system.assembly().pattern_version(), *solver, u, options);
+  ASSERT_TRUE(searched.converged()) << searched.message;
+  for (std::size_t k = 1; k < searched.history.size(); ++k) {
+    if (searched.history[k - 1].residual_norm < 1e-6 * searched.history[0].residual_norm) break;  // round-off
+    EXPECT_LT(searched.history[k].residual_norm, searched.history[k - 1].residual_norm) << "iteration " << k;
+  }
+  EXPECT_LT(searched.history[1].step_length, 1.0);  // the first full step was cut
+  // Residual test: |R| <= 1e-3 |R_0| ends the iterations before the increment test would.
+  options.line_search = false;
+  options.residual_relative = 1e-3;
+  u.setZero();
+  const NewtonResult early =
+      newton_solve(assemble, patch.system.assembly().pattern_version(), *solver, u, options);
+  ASSERT_TRUE(early.converged());
+  EXPECT_LE(early.final_residual_norm, 1e-3 * early.history[0].residual_norm);
+  EXPECT_GT(early.final_residual_norm, 1e-10 * early.history[0].residual_norm);
+}
+
 TEST(ImplicitNewton, NumericalTroubleIsAStatusNotAnException) {
   auto solver = make_linear_solver();
   Eigen::VectorXd u = Eigen::VectorXd::Ones(2);
