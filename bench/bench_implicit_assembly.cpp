@@ -137,6 +137,7 @@ BENCHMARK(BM_FactorizeSolve)->ArgsProduct({{40, 80}, {0, 1, 2, 3}})->Unit(benchm
 // One implicit step of a disk (R = 0.5 m, E = 4.2e6 Pa, nu = 0.4, rho = 1000: Aulisa & Capodaglio's
 // Test A material E1) resting on a clamped floor with the receding correction, on a cells x cells/2
 // Q9 mesh of [0, 4] x [0, 2], 4 x 4 particles per element area: time per step and its shares.
+// Arguments: cells, threads, LinearSolverKind (0 umfpack, 1 klu, 3 gmres_ilut).
 namespace {
 
 void BM_ParticleNewmarkStep(benchmark::State& state) {
@@ -150,6 +151,7 @@ void BM_ParticleNewmarkStep(benchmark::State& state) {
   ParticleNewmarkOptions<2> options;
   options.gravity = Vec<2>(0.0, -9.81);
   options.soft_stiffness = SoftStiffnessTable{{{5, 1e-4}, {9, 1e-8}}};
+  options.linear.kind = static_cast<LinearSolverKind>(state.range(2));
   std::vector<char> dirichlet(static_cast<std::size_t>(mesh.node_count() * 2), 0);
   for (const auto& side : {"bottom", "left", "right"})
     for (const Index n : mesh.node_sets.at(side)) dirichlet[2 * n] = dirichlet[2 * n + 1] = 1;
@@ -191,9 +193,11 @@ void BM_ParticleNewmarkStep(benchmark::State& state) {
 }
 
 BENCHMARK(BM_ParticleNewmarkStep)
-    ->Args({40, 1})
-    ->Args({80, 1})
-    ->Args({80, 2})
+    ->Args({40, 1, 0})
+    ->Args({80, 1, 0})
+    ->Args({80, 2, 0})
+    ->Args({80, 1, 1})
+    ->Args({80, 1, 3})
     ->Iterations(5)
     ->Unit(benchmark::kMillisecond);
 
