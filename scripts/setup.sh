@@ -6,8 +6,10 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # zlib1g-dev: compressed .vtu output; libgmsh-dev: Gmsh .msh mesh import (src/matpoint/mesh);
 # python3-vtk9 and python3-meshio: the tests read our .vtu files back with VTK's own reader and with
-# meshio. (libfmt-dev was listed once but never used.)
+# meshio. (libfmt-dev was listed once but never used.) libsuitesparse-dev: UMFPACK and KLU, the
+# implicit solver's sparse direct solvers (src/matpoint/implicit/linear_solver.cpp).
 packages=(build-essential cmake libeigen3-dev nlohmann-json3-dev libcli11-dev libhdf5-dev zlib1g-dev libgmsh-dev
+          libsuitesparse-dev
           libgtest-dev libgmock-dev libbenchmark-dev
           python3 python3-matplotlib python3-numpy python3-meshio python3-h5py python3-vtk9)
 

@@ -31,6 +31,22 @@ struct NeoHookean {
     double zz;
     return stress<D>(F, zz);
   }
+  /// Kirchhoff stress tau = J sigma at F for any scalar type S (double, or a dual number of the
+  /// implicit solver's automatic differentiation):
+  ///   log_j:          tau = lambda ln J I + mu (B - I)    (Aulisa & Capodaglio eq. (12) times J, the
+  ///                                                       consistent form of their eq. (23))
+  ///   half_j_squared: tau = lambda / 2 (J^2 - 1) I + mu (B - I)
+  /// 2-D is plane strain (F_zz = 1, so J = det of the in-plane F). stress() above is unchanged.
+  template <class S, int D>
+  [[nodiscard]] Eigen::Matrix<S, D, D> kirchhoff_stress(const Eigen::Matrix<S, D, D>& F) const {
+    using std::log;
+    const S J = F.determinant();
+    const S volumetric_part =
+        volumetric == NeoHookeanVolumetric::LogJ ? S(lambda * log(J)) : S(0.5 * lambda * (J * J - 1.0));
+    Eigen::Matrix<S, D, D> tau = mu * (F * F.transpose());
+    for (int a = 0; a < D; ++a) tau(a, a) += volumetric_part - mu;
+    return tau;
+  }
   /// Stored energy per unit initial volume: mu/2 (tr C - D) - mu ln J + U(J), where
   /// U = lambda/2 (ln J)^2 (log_j) or lambda/2 ((J^2 - 1)/2 - ln J) (half_j_squared).
   template <int D> [[nodiscard]] double energy_density(const Mat<D>& F) const {

@@ -1,0 +1,258 @@
+// One time step of Aulisa & Capodaglio's uncoupled implicit MPM (extraction §9), on a fixed
+// background mesh (u_reset = 0, so x~ = the mesh's nodes):
+//   0. locate the particles (host element, xi) in x~; the receding switches from v_p^n (A4);
+//   1. active set, flags M_E and C_E (§5.2), particles sorted by element as quadrature points;
+//   2. Newton on u~ from u~ = 0 (§6), K by AD, the generic assembly and linear solver;
+//   3. commit at the particles (§7, eqs. (35), (19), (17), (34)): u_p, a_p, v_p, F_p, x_p;
+//   4. the grid is reset to 0 (nothing to keep: u~ lives only inside the step).
+// Particle data: matpoint's ParticleSet<D> (x, v, mass, volume0, F, stress, material) plus the
+// implicit extras (acceleration, host element, xi).
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "matpoint/implicit/linear_solver.hpp"
+#include "matpoint/implicit/newton.hpp"
+#include "matpoint/implicit/particle_newmark/element_flags.hpp"
+#include "matpoint/implicit/particle_newmark/particle_newmark_system.hpp"
+#include "matpoint/mesh/point_locator.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+namespace matpoint::implicit {
+
+/// What the implicit particle update keeps beyond ParticleSet<D>.
+template <int D>
+struct ImplicitParticleState {
+  std::vector<Vec<D>> acceleration;  // a_p^n
+  std::vector<Index> element;        // host element in x~ (-1: not located yet)
+  std::vector<Vec<D>> xi;            // local coordinates in the host element
+  void resize(std::size_t n) {
+    acceleration.resize(n, Vec<D>::Zero());
+    element.resize(n, -1);
+    xi.resize(n, Vec<D>::Zero());
+  }
+};
+
+template <int D>
+struct ParticleNewmarkOptions {
+  NewmarkParameters newmark;
+  Vec<D> gravity = Vec<D>::Zero();
+  /// A17: initial particle acceleration a^0 = 0 (the paper) or a^0 = b (consistent with gravity).
+  bool initial_acceleration_from_body_force = false;
+  FlagRule flag_rule = FlagRule::Paper;
+  SoftStiffnessTable soft_stiffness;   // C_E(M_E); empty: no soft stiffness
+  std::vector<char> not_fully_active;  // per node, for FlagRule::Code (A13)
+  bool receding_in_gradient = true;    // A24
+  NewtonOptions newton;
+  LinearSolverOptions linear;
+};
+
+struct StepReport {
+  NewtonResult newton;
+  Index active_elements = 0;
+  Index lost_particles = 0;       // particles outside the mesh (the step is refused, A22)
+  double assembly_seconds = 0.0;  // residual + Jacobian assembly (the linear solver keeps its own times)
+  [[nodiscard]] bool ok() const { return lost_particles == 0 && newton.converged(); }
+};
+
+template <class E, class Material>
+class ParticleNewmarkStepper {
+ public:
+  static constexpr int D = E::kDim;
+
+  /// dirichlet: one flag per dof (node * D + component), value 0 (walls at rest). receding: C_c of
+  /// (element, local face) pairs on Dirichlet faces (§5; empty: no correction).
+  ParticleNewmarkStepper(const mesh::Mesh<D>& mesh, std::vector<Material> materials,
+                         ParticleNewmarkOptions<D> options, std::vector<char> dirichlet,
+                         std::map<std::pair<Index, int>, double> receding = {})
+      : mesh_(mesh),
+        materials_(std::move(materials)),
+        options_(std::move(options)),
+        dirichlet_(std::move(dirichlet)),
+        receding_(std::move(receding)),
+        locator_(mesh, mesh.nodes),
+        solver_(make_linear_solver(options_.linear)) {
+    options_.newton.components = D;
+  }
+
+  /// Sizes the implicit extras and sets a^0 (A17).
+  void initialize(const ParticleSet<D>& particles, ImplicitParticleState<D>& state) const {
+    state.resize(particles.size());
+    for (auto& a : state.acceleration)
+      a = options_.initial_acceleration_from_body_force ? options_.gravity : Vec<D>::Zero();
+  }
+
+  /// Advances the particles by dt. On a failed step (report.ok() false) the particles are unchanged.
+  StepReport step(ParticleSet<D>& particles, ImplicitParticleState<D>& state, double dt);
+
+  [[nodiscard]] const LinearSolver& linear_solver() const { return *solver_; }
+
+ private:
+  bool locate(const ParticleSet<D>& particles, ImplicitParticleState<D>& state, StepReport& report) const;
+  void build_quadrature(const ParticleSet<D>& particles, const ImplicitParticleState<D>& state,
+                        const NewmarkCoefficients& c);
+  void commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state, const Eigen::VectorXd& u,
+              double dt) const;
+
+  const mesh::Mesh<D>& mesh_;
+  std::vector<Material> materials_;
+  ParticleNewmarkOptions<D> options_;
+  std::vector<char> dirichlet_;
+  std::map<std::pair<Index, int>, double> receding_;
+  mesh::PointLocator<D> locator_;
+  std::unique_ptr<LinearSolver> solver_;
+  ActiveSet set_;
+  ParticleQuadrature<E> q_;
+  std::vector<FaceCoefficients<E>> element_receding_;
+  ParticleNewmarkSystem<E, Material> system_;
+};
+
+template <class E, class Material>
+bool ParticleNewmarkStepper<E, Material>::locate(const ParticleSet<D>& particles,
+                                                 ImplicitParticleState<D>& state, StepReport& report) const {
+  const auto n = static_cast<std::ptrdiff_t>(particles.size());
+  Index lost = 0;
+#pragma omp parallel for reduction(+ : lost) if (n > kParallelMinimum)
+  for (std::ptrdiff_t p = 0; p < n; ++p) {
+    const auto loc =
+        locator_.locate(particles.x[static_cast<std::size_t>(p)], state.element[static_cast<std::size_t>(p)]);
+    if (!loc) {
+      ++lost;
+      continue;
+    }
+    state.element[static_cast<std::size_t>(p)] = loc->element;
+    state.xi[static_cast<std::size_t>(p)] = loc->xi;
+  }
+  report.lost_particles = lost;
+  return lost == 0;
+}
+
+template <class E, class Material>
+void ParticleNewmarkStepper<E, Material>::build_quadrature(const ParticleSet<D>& particles,
+                                                           const ImplicitParticleState<D>& state,
+                                                           const NewmarkCoefficients& c) {
+  const ParticlesByElement sorted = sort_particles_by_element(set_, state.element);
+  q_.clear();
+  element_receding_.assign(set_.active_elements.size(), FaceCoefficients<E>{});
+  for (std::size_t k = 0; k < set_.active_elements.size(); ++k) {
+    const Index e = set_.active_elements[k];
+    const NodeMatrix<E> x = gather_nodes<E>(mesh_.nodes, mesh_.element_nodes(e));
+    bool any_face = false;
+    for (int f = 0; f < E::kFaces; ++f)
+      if (const auto it = receding_.find({e, f}); it != receding_.end()) {
+        element_receding_[k][static_cast<std::size_t>(f)] = it->second;
+        any_face = true;
+      }
+    for (Index o = sorted.begin[k]; o < sorted.begin[k + 1]; ++o) {
+      const auto p = static_cast<std::size_t>(sorted.order[static_cast<std::size_t>(o)]);
+      std::uint32_t bits = 0;
+      if constexpr (RecedingStencil<E>::kSupported)
+        if (any_face) bits = receding_switches<E>(x, element_receding_[k], particles.v[p]);
+      q_.add(static_cast<Index>(p), state.xi[p], x, particles.mass[p], particles.volume0[p],
+             particles.material[p], particles.F[p],
+             c.known<D>(particles.v[p], state.acceleration[p]) - options_.gravity, bits);
+    }
+    q_.close_block();
+  }
+}
+
+template <class E, class Material>
+StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
+                                                     ImplicitParticleState<D>& state, double dt) {
+  StepReport report;
+  if (state.element.size() != particles.size()) initialize(particles, state);
+  if (!locate(particles, state, report)) {
+    report.newton.status = NewtonStatus::AssemblyFailed;
+    report.newton.message = std::to_string(report.lost_particles) + " particles outside the mesh";
+    return report;
+  }
+  // Active set, flags, quadrature, system (fixed for the Newton iterations).
+  set_ = build_active_set(mesh_.node_count(), mesh_.nodes_per_element, mesh_.connectivity, state.element);
+  report.active_elements = static_cast<Index>(set_.active_elements.size());
+  const NewmarkCoefficients c(options_.newmark, dt);
+  build_quadrature(particles, state, c);
+  typename ParticleNewmarkSystem<E, Material>::StepData data;
+  data.mesh = &mesh_;
+  data.reference_nodes = mesh_.nodes;
+  data.set = &set_;
+  data.quadrature = &q_;
+  data.materials = materials_;
+  const auto flags =
+      element_flags(set_, E::kNodes, mesh_.connectivity, options_.flag_rule, options_.not_fully_active);
+  const auto ce = soft_stiffness_factors(flags, options_.soft_stiffness, options_.flag_rule);
+  data.soft_stiffness.resize(ce.size());
+  for (std::size_t k = 0; k < ce.size(); ++k) {
+    double mu = 0.0;  // the shear modulus of the element's MPM body: the largest among its particles
+    for (Index p = q_.begin[k]; p < q_.begin[k + 1]; ++p)
+      mu = std::max(mu, materials_[static_cast<std::size_t>(q_.material[static_cast<std::size_t>(p)])].mu);
+    data.soft_stiffness[k] = mu * ce[k];
+  }
+  if (!receding_.empty()) data.receding = element_receding_;
+  data.dirichlet = dirichlet_;
+  data.options.inertia_coefficient = c.displacement;
+  data.options.receding_in_gradient = options_.receding_in_gradient;
+  system_.setup(std::move(data));
+
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(system_.dof_count());  // u~ = 0 (§6)
+  const auto timed_assembly = [&](const Eigen::VectorXd& x, Eigen::VectorXd& R, SparseMatrix* K) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool ok = system_.assemble(x, R, K);
+    report.assembly_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return ok;
+  };
+  report.newton =
+      newton_solve(timed_assembly, system_.assembly().pattern_version(), *solver_, u, options_.newton);
+  if (report.newton.converged()) commit(particles, state, u, dt);
+  return report;
+}
+
+template <class E, class Material>
+void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state,
+                                                 const Eigen::VectorXd& u, double dt) const {
+  const NewmarkCoefficients c(options_.newmark, dt);
+  const double gamma = options_.newmark.gamma;
+  const auto count = static_cast<std::ptrdiff_t>(q_.particle.size());
+#pragma omp parallel for if (count > kParallelMinimum)
+  for (std::ptrdiff_t o = 0; o < count; ++o) {
+    const auto qo = static_cast<std::size_t>(o);
+    const auto p = static_cast<std::size_t>(q_.particle[qo]);
+    const auto nodes = mesh_.element_nodes(state.element[p]);
+    std::array<double, E::kNodes * D> ue;
+    for (int I = 0; I < E::kNodes; ++I)
+      for (int i = 0; i < D; ++i)
+        ue[static_cast<std::size_t>(I * D + i)] = u[nodes[static_cast<std::size_t>(I)] * D + i];
+    // u_p (35) with the uncorrected u~; F_p (34) with the corrected one where switched.
+    Vec<D> up = Vec<D>::Zero();
+    for (int I = 0; I < E::kNodes; ++I)
+      for (int i = 0; i < D; ++i) up[i] += q_.N[qo][I] * ue[static_cast<std::size_t>(I * D + i)];
+    if constexpr (RecedingStencil<E>::kSupported)
+      if (q_.receding[qo] != 0) {
+        const std::size_t k = static_cast<std::size_t>(
+            std::upper_bound(q_.begin.begin(), q_.begin.end(), static_cast<Index>(o)) - q_.begin.begin() - 1);
+        apply_receding_correction<E>(q_.receding[qo], element_receding_[k], ue.data());
+      }
+    Mat<D> H = Mat<D>::Identity();
+    for (int I = 0; I < E::kNodes; ++I)
+      for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j) H(i, j) += ue[static_cast<std::size_t>(I * D + i)] * q_.G[qo](I, j);
+    const Vec<D> a_old = state.acceleration[p];
+    const Vec<D> a_new = c.displacement * up + c.known<D>(particles.v[p], a_old);  // (19)
+    particles.v[p] += dt * ((1.0 - gamma) * a_old + gamma * a_new);                // (17)
+    state.acceleration[p] = a_new;
+    particles.F[p] = H * particles.F[p];
+    particles.x[p] += up;
+    const Material& m = materials_[static_cast<std::size_t>(particles.material[p])];
+    if constexpr (D == 2)
+      particles.stress[p] = m.template stress<D>(particles.F[p], particles.stress_zz[p]);
+    else
+      particles.stress[p] = m.template stress<D>(particles.F[p]);
+  }
+}
+
+}  // namespace matpoint::implicit

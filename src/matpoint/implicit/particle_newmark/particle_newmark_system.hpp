@@ -1,0 +1,172 @@
+// The nonlinear system of one step of Aulisa & Capodaglio's particle-Newmark implicit MPM (§3.3,
+// eqs. (26)-(28), (32)): unknowns u~ at every mesh node (node-major: dof = node * D + component),
+// blocks
+//   - one per active element: the particles' residual (20)-(25) plus the soft stiffness (26) when
+//     C_E > 0, Jacobian by forward-mode AD (ad_jacobian.hpp);
+//   - one per dof of the nodes in I_ib: the lumped-mass equation (27) summed over the node's inactive
+//     elements (linear and diagonal, so the Jacobian is the node mass itself);
+// assembled by the generic SparseAssembly; Dirichlet dofs are identity rows. Fixed during the
+// step's Newton iterations: host elements, active set, flags, switches (extraction §5).
+#pragma once
+
+#include <algorithm>
+#include <span>
+#include <vector>
+
+#include "matpoint/implicit/active_set.hpp"
+#include "matpoint/implicit/ad_jacobian.hpp"
+#include "matpoint/implicit/particle_newmark/inactive_mass.hpp"
+#include "matpoint/implicit/particle_newmark/particle_residual.hpp"
+#include "matpoint/implicit/particle_newmark/soft_stiffness.hpp"
+#include "matpoint/implicit/sparse_assembly.hpp"
+#include "matpoint/mesh/mesh.hpp"
+
+namespace matpoint::implicit {
+
+template <class E, class Material>
+class ParticleNewmarkSystem {
+ public:
+  static constexpr int kDim = E::kDim, kNodes = E::kNodes, kDofs = kNodes * kDim;
+
+  /// What one step fixes. q has one block per active element (in set.active_elements order);
+  /// soft_stiffness[k] = mu C_E of active element k (0: none); receding[k]: C_c per face of active
+  /// element k (empty: none anywhere); dirichlet: one flag per dof.
+  struct StepData {
+    const mesh::Mesh<kDim>* mesh = nullptr;
+    std::span<const Vec<kDim>> reference_nodes;  // x~ (the mesh's nodes in the uncoupled case)
+    const ActiveSet* set = nullptr;
+    const ParticleQuadrature<E>* quadrature = nullptr;
+    std::span<const Material> materials;
+    std::vector<double> soft_stiffness;
+    std::vector<FaceCoefficients<E>> receding;
+    std::span<const char> dirichlet;
+    ParticleResidualOptions options;
+    int gauss_points_per_direction = 3;  // soft stiffness and lumped mass (the paper's 3 x 3 for Q9)
+  };
+
+  /// Builds the blocks, and the sparse pattern when they differ from the last call's (a new active
+  /// set); the pattern version, hence the solver's symbolic analysis, survives otherwise.
+  void setup(StepData data);
+
+  /// R(u~) and, when K is not null, the Jacobian; Dirichlet rows as identity with zero residual.
+  bool assemble(const Eigen::VectorXd& u, Eigen::VectorXd& R, SparseMatrix* K) const;
+
+  [[nodiscard]] const SparseAssembly& assembly() const { return assembly_; }
+  [[nodiscard]] Index dof_count() const { return assembly_.dof_count(); }
+
+  /// The residual and Jacobian (row-major) of active element k alone at its dofs' values u_e.
+  void element_residual_and_jacobian(Index k, const double* u_e, double* r, double* K) const;
+  void element_residual(Index k, const double* u_e, double* r) const;
+
+ private:
+  template <class S>
+  void active_residual(Index k, const S* u, S* r) const;
+
+  StepData data_;
+  Index active_ = 0;
+  std::vector<GaussGeometry<E>> soft_geometry_;  // per active element with soft stiffness
+  std::vector<double> mass_dof_;                 // per inactive-node block (one dof): its lumped mass
+  SparseAssembly assembly_;
+  std::vector<Index> offsets_, dofs_;  // the blocks of the current pattern
+  std::vector<char> dirichlet_;
+};
+
+template <class E, class Material>
+void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
+  data_ = std::move(data);
+  const auto& mesh = *data_.mesh;
+  const auto& set = *data_.set;
+  active_ = static_cast<Index>(set.active_elements.size());
+  std::vector<Index> offsets{0}, dofs;
+  soft_geometry_.assign(static_cast<std::size_t>(active_), {});
+  for (Index k = 0; k < active_; ++k) {
+    const Index e = set.active_elements[static_cast<std::size_t>(k)];
+    for (const Index node : mesh.element_nodes(e))
+      for (int i = 0; i < kDim; ++i) dofs.push_back(node * kDim + i);
+    offsets.push_back(static_cast<Index>(dofs.size()));
+    if (data_.soft_stiffness[static_cast<std::size_t>(k)] > 0.0)
+      soft_geometry_[static_cast<std::size_t>(k)] = gauss_geometry<E>(
+          gather_nodes<E>(data_.reference_nodes, mesh.element_nodes(e)), data_.gauss_points_per_direction);
+  }
+  // Inactive elements: the mass equations (27) of their I_ib nodes, summed per node (a row-sum
+  // lumped mass), one 1 x 1 block per dof: the pattern of these rows is the diagonal alone (blocks
+  // over an element's nodes would add their structural zeros to the factorisation).
+  std::vector<double> node_mass(static_cast<std::size_t>(mesh.node_count()), 0.0);
+  for (const Index e : set.inactive_elements) {
+    const auto nodes = mesh.element_nodes(e);
+    const auto m = lumped_node_masses<E>(
+        gauss_geometry<E>(gather_nodes<E>(data_.reference_nodes, nodes), data_.gauss_points_per_direction));
+    for (int I = 0; I < kNodes; ++I)
+      node_mass[static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)])] += m[I];
+  }
+  mass_dof_.clear();
+  for (Index node = 0; node < mesh.node_count(); ++node)
+    if (set.node_active[static_cast<std::size_t>(node)] == 0)
+      for (int i = 0; i < kDim; ++i) {
+        dofs.push_back(node * kDim + i);
+        offsets.push_back(static_cast<Index>(dofs.size()));
+        mass_dof_.push_back(node_mass[static_cast<std::size_t>(node)]);
+      }
+  // The same blocks and Dirichlet dofs as the last step: keep the pattern (and with it the linear
+  // solver's symbolic analysis, keyed on pattern_version()).
+  const bool same =
+      offsets == offsets_ && dofs == dofs_ &&
+      std::equal(data_.dirichlet.begin(), data_.dirichlet.end(), dirichlet_.begin(), dirichlet_.end());
+  if (same) return;
+  assembly_.build(mesh.node_count() * kDim, offsets, dofs, data_.dirichlet);
+  offsets_ = std::move(offsets);
+  dofs_ = std::move(dofs);
+  dirichlet_.assign(data_.dirichlet.begin(), data_.dirichlet.end());
+}
+
+template <class E, class Material>
+template <class S>
+void ParticleNewmarkSystem<E, Material>::active_residual(Index k, const S* u, S* r) const {
+  const auto& q = *data_.quadrature;
+  static const FaceCoefficients<E> kNone{};
+  const FaceCoefficients<E>& receding =
+      data_.receding.empty() ? kNone : data_.receding[static_cast<std::size_t>(k)];
+  add_particle_residual<E>(q, q.begin[static_cast<std::size_t>(k)], q.begin[static_cast<std::size_t>(k) + 1],
+                           data_.materials.data(), receding, data_.options, u, r);
+  const double soft = data_.soft_stiffness[static_cast<std::size_t>(k)];
+  if (soft > 0.0) add_soft_stiffness_residual<E>(soft_geometry_[static_cast<std::size_t>(k)], soft, u, r);
+}
+
+template <class E, class Material>
+void ParticleNewmarkSystem<E, Material>::element_residual_and_jacobian(Index k, const double* u_e, double* r,
+                                                                       double* K) const {
+  residual_and_jacobian<kDofs>(
+      u_e, [&](const auto* u, auto* res) { active_residual(k, u, res); }, r, K);
+}
+
+template <class E, class Material>
+void ParticleNewmarkSystem<E, Material>::element_residual(Index k, const double* u_e, double* r) const {
+  residual_only<kDofs>(
+      u_e, [&](const double* u, double* res) { active_residual(k, u, res); }, r);
+}
+
+template <class E, class Material>
+bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eigen::VectorXd& R,
+                                                  SparseMatrix* K) const {
+  assembly_.assemble(
+      [&](Index b, std::span<const Index> dofs, double* r, double* k) {
+        if (b < active_) {
+          std::array<double, kDofs> u_e;
+          for (int i = 0; i < kDofs; ++i)
+            u_e[static_cast<std::size_t>(i)] = u[dofs[static_cast<std::size_t>(i)]];
+          if (k != nullptr)
+            element_residual_and_jacobian(b, u_e.data(), r, k);
+          else
+            element_residual(b, u_e.data(), r);
+          return;
+        }
+        // (27): r = m u for one dof of an I_ib node, dr/du = m.
+        const double m = mass_dof_[static_cast<std::size_t>(b - active_)];
+        r[0] = m * u[dofs[0]];
+        if (k != nullptr) k[0] = m;
+      },
+      R, K);
+  return R.allFinite();
+}
+
+}  // namespace matpoint::implicit
