@@ -161,27 +161,49 @@ std::optional<json> parse_json(const std::string& text, Issues& issues) {
 
 Spec SpecReader::read(const json& root_json) {
   const Value root(&root_json, "", issues_, true);
-  const Object top(root, {"title", "units", "grid", "materials", "bodies", "boundary_conditions", "loads",
-                          "solver", "output", "checks", "contact"});
+  const Object top(root, {"title", "units", "grid", "mesh", "materials", "bodies", "boundary_conditions",
+                          "loads", "solver", "output", "checks", "contact"});
   if (!top.valid()) return std::move(spec_);
   set_if(spec_.title, top.optional("title").string());
   read_units(Object(top.optional("units"), {"length", "time", "mass", "stress", "energy"}));
-  read_grid(Object(top.required("grid"), {"dim", "min", "max", "cell_size"}));
+  if (top.has("mesh") && top.has("grid"))
+    top.optional("grid").fail("no grid with a mesh (an implicit run's particles are seeded on its mesh)");
+  else if (top.has("mesh"))
+    read_mesh(
+        Object(top.required("mesh"), {"element", "min", "max", "cells", "ratio", "refine", "file", "dim"}));
+  else
+    read_grid(Object(top.required("grid"), {"dim", "min", "max", "cell_size"}));
   read_materials(top.required("materials"));
   read_bodies(top.required("bodies"));
   read_conditions(top.optional("boundary_conditions"));
   read_loads(Object(top.optional("loads"), {"gravity"}));
-  read_solver(
-      Object(top.required("solver"),
-             {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "basis", "shape",
-              "mapping", "mls", "deformation_update", "dt", "courant", "end_time", "max_steps",
-              "mass_tolerance", "constrain_old_velocity", "artificial_viscosity", "max_energy_growth"}));
+  read_solver(Object(top.required("solver"), {"scheme",
+                                              "transfer",
+                                              "position_alpha",
+                                              "flip_fraction",
+                                              "fmpm",
+                                              "xpic",
+                                              "basis",
+                                              "shape",
+                                              "mapping",
+                                              "mls",
+                                              "deformation_update",
+                                              "dt",
+                                              "courant",
+                                              "end_time",
+                                              "max_steps",
+                                              "mass_tolerance",
+                                              "constrain_old_velocity",
+                                              "artificial_viscosity",
+                                              "max_energy_growth",
+                                              "type",
+                                              "implicit"}));
   check_one_sided_transfer(top.optional("boundary_conditions"));
   read_output(Object(top.optional("output"),
                      {"every_steps", "every_time", "particles", "plots", "fields", "checkpoint", "probes"}));
   read_checks(top.optional("checks"));
   read_contact(top.optional("contact"));
-  if (grid_ok_) check_stencil_fits();
+  if (grid_ok_ && !spec_.mesh.enabled) check_stencil_fits();
   if (issues_.empty()) check_step_count();
   return std::move(spec_);
 }

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace matpoint {
@@ -17,9 +18,21 @@ enum class VelocityTransfer { FLIP, PIC, Blend, FMPM, XPIC };  // particle veloc
 // Grid basis (docs/input.md#solver): point bases, GIMP family, CPDI family.
 enum class ShapeKind { Linear, BSpline2, BSpline3, UGIMP, CpGIMP, CPDI1, CPDI2, B2GIMP, B2CPDI };
 enum class DeformationUpdate { Exponential, Linear };  // dF = exp(L dt) or I + L dt
-enum class MaterialModel { LinearElastic, NeoHookean, MieGruneisen, Rigid, MohrCoulomb, DruckerPrager, VonMises };
+enum class MaterialModel {
+  LinearElastic,
+  NeoHookean,
+  MieGruneisen,
+  Rigid,
+  MohrCoulomb,
+  DruckerPrager,
+  VonMises
+};
 enum class NeoHookeanVolumetric { LogJ, HalfJSquared };  // lambda lnJ/J  or  lambda/2 (J - 1/J)
-enum class DruckerPragerMatch { Outer, Inner, PlaneStrain };  // cone through MC's compression/extension edges, or plane strain
+enum class DruckerPragerMatch {
+  Outer,
+  Inner,
+  PlaneStrain
+};  // cone through MC's compression/extension edges, or plane strain
 
 struct GridSpec {
   int dim = 2;
@@ -110,6 +123,24 @@ struct VelocityConditionSpec {
   TimeFunction wall_velocity;
   double depth = 0;
   std::optional<double> stretch_about;
+  // Implicit runs: the condition holds on the nodes of a named mesh boundary (a structured mesh's
+  // "left", "right", "bottom", "top", "back", "front", or a Gmsh physical group), and `receding`
+  // is the receding-contact constant C_c of its faces (Aulisa & Capodaglio §5; 0: none).
+  std::string boundary;
+  double receding = 0;
+};
+
+/// The element mesh of an implicit run (mesh/): a structured rectangle or box, graded per axis and
+/// refined `refine` times (Aulisa & Capodaglio's level J), or a Gmsh .msh file.
+enum class MeshElement { Q4, Q9, Hex8, FromFile };
+struct MeshSpec {
+  bool enabled = false;
+  MeshElement element = MeshElement::Q9;
+  Triple min{}, max{};
+  std::array<int, 3> cells{};  // coarse elements per direction
+  Triple ratio{1, 1, 1};       // geometric growth of the element size along each axis
+  int refine = 0;              // uniform midpoint refinements
+  std::string file;            // a Gmsh .msh file instead of the structured mesh
 };
 
 struct LoadSpec {
@@ -147,7 +178,27 @@ struct MlsSpec {
   CellVolume cell_volume = CellVolume::Full;
 };
 
+/// The implicit particle-Newmark MPM of Aulisa & Capodaglio (§3, extraction §9): its options.
+enum class SolverKind { Explicit, ImplicitMpm };
+enum class LinearSolverChoice { Umfpack, Klu, BiCgStab, Gmres };
+enum class SoftStiffnessRule { Paper, Code };  // M_E by the paper's rule, or the authors' code's (A13)
+struct ImplicitSpec {
+  double beta = 0.3, gamma = 0.5;  // Newmark, eqs. (17)-(19); the paper's tests use 0.3 / 0.5
+  bool initial_acceleration_from_body_force = false;  // a^0 = 0 (the paper) or a^0 = b (A17)
+  double increment_tolerance = 1e-9;                  // Newton: ||du_c|| / ||u_c|| per component (A16)
+  int max_iterations = 20;
+  double residual_tolerance = 0;  // optional ||R|| / ||R_0|| test; 0: off
+  bool line_search = false;
+  int max_step_cuts = 4;  // a diverging step is halved and retried this many times
+  LinearSolverChoice linear_solver = LinearSolverChoice::Umfpack;
+  SoftStiffnessRule flag_rule = SoftStiffnessRule::Paper;
+  std::vector<std::pair<int, double>> soft_stiffness;  // (M_E upper bound, C_E): C_E for M_E < bound
+  bool receding_in_gradient = true;                    // A24: grad_x N from the corrected nodes
+};
+
 struct SolverSpec {
+  SolverKind kind = SolverKind::Explicit;
+  ImplicitSpec implicit;
   UpdateScheme scheme =
       UpdateScheme::MUSL;  // see docs/input.md: robust with FLIP, energy within 0.1 % in two-disks
   VelocityTransfer transfer = VelocityTransfer::FLIP;
@@ -246,7 +297,8 @@ struct ContactSpec {
 
 struct Spec {
   std::string title;
-  GridSpec grid;
+  GridSpec grid;  // implicit runs: the mesh's bounding box and mean element size (particle seeding)
+  MeshSpec mesh;
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   std::vector<VelocityConditionSpec> conditions;

@@ -57,6 +57,12 @@ void add_solver_statistics(const RunFacts& f, nlohmann::json& s) {
     s["mls_reconstructions"] = f.mls->evaluations;
     s["mls_fallbacks"] = f.mls->fallbacks;
   }
+  if (f.implicit) {
+    s["implicit"] = *f.implicit;
+    const double linear =
+        f.implicit->value("factorization_seconds", 0.0) + f.implicit->value("solve_seconds", 0.0);
+    if (f.step_wall > 0) s["implicit"]["linear_solve_share"] = linear / f.step_wall;
+  }
   if (f.logistic_fallbacks)
     s["logistic_fallbacks"] = *f.logistic_fallbacks;  // fits that kept the average normal
 }

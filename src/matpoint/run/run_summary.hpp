@@ -37,6 +37,7 @@ struct RunFacts {
   std::optional<FmpmStatistics> fmpm;             // FMPM and XPIC runs
   std::optional<MlsStatistics> mls;               // IMPM and MLS-velocity runs
   std::optional<std::size_t> logistic_fallbacks;  // logistic-regression contact normals
+  std::optional<nlohmann::json> implicit;         // implicit runs: Newton, cuts, assembly/solve times
   double momentum_scale = 0.0;                    // sum m |v| at time 0 (the momentum checks' scale)
   std::vector<double> final_stress_xx;            // every particle's sigma_xx (final-state measures)
   struct Probe {

@@ -10,6 +10,10 @@
 
 #include "matpoint/core/subprocess.hpp"
 #include "matpoint/explicit/explicit_solver.hpp"
+#include "matpoint/implicit/implicit_mpm_solver.hpp"
+#include "matpoint/mesh/gmsh_import.hpp"
+#include "matpoint/mesh/refine.hpp"
+#include "matpoint/mesh/structured_mesh.hpp"
 #include "matpoint/run/run_loop.hpp"
 #include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
@@ -95,12 +99,44 @@ RunResult run_dim(const Spec& spec, const RunOptions& options) {
   return run_with_fields<D, TensorStencils<D, LinearBasis>>(spec, options);
 }
 
+/// The input's mesh: structured (graded per axis) or read from a Gmsh file, refined mesh.refine times.
+template <int D>
+mesh::Mesh<D> build_mesh(const MeshSpec& m) {
+  mesh::Mesh<D> out;
+  if (!m.file.empty()) {
+    out = mesh::read_gmsh<D>(m.file, "mesh.file");
+  } else {
+    std::array<mesh::AxisSpacing, 3> axes;
+    for (int a = 0; a < D; ++a)
+      axes[static_cast<std::size_t>(a)] =
+          mesh::AxisSpacing::geometric(m.min[a], m.max[a], m.cells[static_cast<std::size_t>(a)], m.ratio[a]);
+    if constexpr (D == 2)
+      out = mesh::structured_rectangle(
+          m.element == MeshElement::Q4 ? mesh::ElementShape::Q4 : mesh::ElementShape::Q9, axes[0], axes[1]);
+    else
+      out = mesh::structured_box(axes[0], axes[1], axes[2]);
+  }
+  return m.refine > 0 ? mesh::refine(out, m.refine) : out;
+}
+
+template <int D>
+RunResult run_implicit_dim(const Spec& spec, const RunOptions& options) {
+  mesh::Mesh<D> background = build_mesh<D>(spec.mesh);
+  return mesh::visit_element_type_of_dim<D>(background.shape, [&](auto element) -> RunResult {
+    using E = decltype(element);
+    implicit::ImplicitMpmSolver<E> solver(spec, std::move(background));  // may throw InputError
+    return run_loop<D>(spec, options, solver);
+  });
+}
+
 }  // namespace
 
 RunResult run_explicit(const Spec& spec, const RunOptions& options) {
 #ifdef _OPENMP
   if (options.threads > 0) omp_set_num_threads(options.threads);
 #endif
+  if (spec.solver.kind == SolverKind::ImplicitMpm)
+    return spec.grid.dim == 3 ? run_implicit_dim<3>(spec, options) : run_implicit_dim<2>(spec, options);
   switch (spec.grid.dim) {
     case 1:
       return run_dim<1>(spec, options);

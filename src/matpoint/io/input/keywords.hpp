@@ -82,4 +82,16 @@ constexpr std::array<Named<CellVolume>, 2> kCellVolumes{
 constexpr std::array<Named<DeformationUpdate>, 2> kDeformationUpdates{
     {{"exponential", DeformationUpdate::Exponential}, {"linear", DeformationUpdate::Linear}}};
 
+constexpr std::array<Named<MeshElement>, 3> kMeshElements{
+    {{"q4", MeshElement::Q4}, {"q9", MeshElement::Q9}, {"hex8", MeshElement::Hex8}}};
+constexpr std::array<Named<SolverKind>, 2> kSolverKinds{
+    {{"explicit", SolverKind::Explicit}, {"implicit_mpm", SolverKind::ImplicitMpm}}};
+constexpr std::array<Named<LinearSolverChoice>, 4> kLinearSolvers{{{"umfpack", LinearSolverChoice::Umfpack},
+                                                                   {"klu", LinearSolverChoice::Klu},
+                                                                   {"bicgstab", LinearSolverChoice::BiCgStab},
+                                                                   {"gmres", LinearSolverChoice::Gmres}}};
+constexpr std::array<Named<SoftStiffnessRule>, 2> kFlagRules{
+    {{"paper", SoftStiffnessRule::Paper}, {"code", SoftStiffnessRule::Code}}};
+constexpr std::array<Named<bool>, 2> kInitialAccelerations{{{"zero", false}, {"body_force", true}}};
+
 }  // namespace matpoint::input_detail

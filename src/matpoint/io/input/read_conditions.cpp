@@ -26,7 +26,10 @@ namespace matpoint::input_detail {
 void SpecReader::read_conditions(const Value& list) {
   for (const auto& item : list.elements("an array of boundary condition objects")) {
     const bool wall = item.get().is_object() && item.get().value("type", json()) == "moving_wall";
-    if (wall)
+    if (spec_.mesh.enabled)
+      spec_.conditions.push_back(
+          read_mesh_condition(Object(item, {"type", "boundary", "normal", "receding"})));
+    else if (wall)
       spec_.conditions.push_back(read_moving_wall(
           Object(item, {"type", "axis", "position", "material", "velocity", "depth", "stretch_about"})));
     else
@@ -53,6 +56,39 @@ VelocityConditionSpec SpecReader::read_moving_wall(const Object& c) const {
   if (auto v = read_time_function(c.required("velocity"), expected)) out.wall_velocity = *v;
   set_if(out.depth, c.required("depth").number(kNonNegative));
   out.stretch_about = c.optional("stretch_about").number();
+  return out;
+}
+
+/// A condition of an implicit run: "fixed" (every component 0) or "slip" (the normal component 0)
+/// on the nodes of a named mesh boundary, with the receding-contact constant C_c in [0, 1] of its
+/// faces (Aulisa & Capodaglio §5, eq. (47) as corrected in extraction A3).
+VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
+  VelocityConditionSpec out;
+  if (!c.valid()) return out;
+  const Value type = c.required("type");
+  const auto kind = type.choice(kConditionKinds);
+  if (kind && *kind != ConditionKind::Fixed && *kind != ConditionKind::Slip)
+    type.fail("\"fixed\" or \"slip\" (an implicit run's conditions hold displacements on mesh boundaries)");
+  set_if(out.kind, kind);
+  const auto boundary = c.required("boundary").string();
+  if (boundary) {
+    out.boundary = *boundary;
+    if (spec_.mesh.file.empty()) {
+      std::vector<std::string_view> sides{"left", "right", "bottom", "top"};
+      if (dim_ == 3) sides.insert(sides.end(), {"back", "front"});
+      if (std::find(sides.begin(), sides.end(), *boundary) == sides.end())
+        c.required("boundary").fail("a side of the structured mesh: one of " + join(sides, true));
+    }
+  }
+  if (out.kind == ConditionKind::Slip) {
+    const auto axis = c.required("normal").choice(kAxes);
+    if (axis && *axis >= dim_)
+      c.required("normal").fail("an axis of the mesh's " + std::to_string(dim_) + " dimensions");
+    set_if(out.normal_axis, axis);
+  } else if (c.has("normal")) {
+    c.optional("normal").fail("no normal unless type is \"slip\"");
+  }
+  set_if(out.receding, c.optional("receding").number(kUnitInterval));
   return out;
 }
 

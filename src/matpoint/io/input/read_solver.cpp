@@ -29,6 +29,13 @@ void SpecReader::read_loads(const Object& loads) {
 
 void SpecReader::read_solver(const Object& s) {
   SolverSpec& out = spec_.solver;
+  set_if(out.kind, s.optional("type").choice(kSolverKinds));
+  if (out.kind == SolverKind::ImplicitMpm) {
+    read_implicit(s);
+    return;
+  }
+  if (s.has("implicit"))
+    s.optional("implicit").fail("no implicit options unless solver.type is \"implicit_mpm\"");
   set_if(out.scheme, s.optional("scheme").choice(kSchemes));
   const auto transfer = s.optional("transfer").choice(kTransfers);
   set_if(out.transfer, transfer);
@@ -62,6 +69,80 @@ void SpecReader::read_solver(const Object& s) {
   read_constrain_old_velocity(s.optional("constrain_old_velocity"), out);
   read_energy_guard(s.optional("max_energy_growth"), out);
   read_artificial_viscosity(Object(s.optional("artificial_viscosity"), {"linear", "quadratic"}), out);
+}
+
+/// solver.type "implicit_mpm": Aulisa & Capodaglio's particle-Newmark MPM on the input's mesh.
+/// The explicit solver's keys are refused; dt and end_time are required.
+void SpecReader::read_implicit(const Object& s) {
+  SolverSpec& out = spec_.solver;
+  if (!spec_.mesh.enabled)
+    s.optional("type").fail(
+        "\"explicit\" unless the input has a mesh (solver.type \"implicit_mpm\" runs on mesh)");
+  for (const char* key : {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "basis",
+                          "shape", "mapping", "mls", "deformation_update", "courant", "mass_tolerance",
+                          "constrain_old_velocity", "artificial_viscosity"})
+    if (s.has(key))
+      s.optional(key).fail(std::string("no ") + key +
+                           " with solver.type \"implicit_mpm\" (an explicit solver's key)");
+  for (std::size_t k = 0; k < spec_.materials.size(); ++k) {
+    const MaterialSpec& material = spec_.materials[k];
+    if (material.model != MaterialModel::NeoHookean || material.volumetric != NeoHookeanVolumetric::LogJ)
+      issues_.add(
+          "materials[" + std::to_string(k) + "].model", "\"" + material.name + "\"",
+          "model \"neo_hookean\" with volumetric \"log_j\" under solver.type \"implicit_mpm\" (Aulisa & "
+          "Capodaglio eq. (12); the other models are not yet implicit)");
+  }
+  out.dt = s.required("dt").number(kPositive);
+  set_if(out.end_time, s.required("end_time").number(kPositive));
+  set_if(out.max_steps, s.optional("max_steps").integer(0));
+  read_energy_guard(s.optional("max_energy_growth"), out);
+  const Object o(s.optional("implicit"), {"beta", "gamma", "initial_acceleration", "newton", "linear_solver",
+                                          "soft_stiffness", "receding_gradient", "max_step_cuts"});
+  ImplicitSpec& m = out.implicit;
+  set_if(m.beta, o.optional("beta").number({0, 0.5, true, false}));
+  set_if(m.gamma, o.optional("gamma").number({0, 1, false, false}));
+  set_if(m.initial_acceleration_from_body_force,
+         o.optional("initial_acceleration").choice(kInitialAccelerations));
+  set_if(m.linear_solver, o.optional("linear_solver").choice(kLinearSolvers));
+  set_if(m.max_step_cuts, o.optional("max_step_cuts").integer(0, 30));
+  const auto corrected = o.optional("receding_gradient").string();
+  if (corrected && *corrected != "corrected" && *corrected != "uncorrected")
+    o.optional("receding_gradient").fail("\"corrected\" or \"uncorrected\" (extraction A24)");
+  if (corrected) m.receding_in_gradient = *corrected == "corrected";
+  const Object n(o.optional("newton"),
+                 {"increment_tolerance", "max_iterations", "residual_tolerance", "line_search"});
+  set_if(m.increment_tolerance, n.optional("increment_tolerance").number({0, 1, true, true}));
+  set_if(m.max_iterations, n.optional("max_iterations").integer(1, 1000));
+  set_if(m.residual_tolerance, n.optional("residual_tolerance").number({0, 1, false, true}));
+  set_if(m.line_search, n.optional("line_search").boolean());
+  read_soft_stiffness(Object(o.optional("soft_stiffness"), {"flag_rule", "table"}), m);
+}
+
+/// soft_stiffness: {"flag_rule": "paper" | "code", "table": [[M, C_E], ...]}: C_E applies to the
+/// elements with M_E < M (the first row that fits; eq. (26), the paper's eqs. (50)/(51)); the
+/// bounds increase, C_E >= 0 does not increase with M (the paper: C_E non-increasing, 0 at M_E = N_E).
+void SpecReader::read_soft_stiffness(const Object& o, ImplicitSpec& m) {
+  set_if(m.flag_rule, o.optional("flag_rule").choice(kFlagRules));
+  const Value table = o.optional("table");
+  const std::string expected =
+      "an array of [M, C_E] rows: whole numbers M increasing in 1..27, C_E >= 0 not increasing";
+  int last_bound = 0;
+  double last_value = kInf;
+  for (const auto& row : table.elements(expected)) {
+    const auto pair = row.get();
+    if (!pair.is_array() || pair.size() != 2 || !pair[0].is_number_integer() || !pair[1].is_number()) {
+      row.fail(expected);
+      continue;
+    }
+    const long bound = pair[0].get<long>();
+    const double value = pair[1].get<double>();
+    if (bound <= last_bound || bound > 27 || !(value >= 0) || !std::isfinite(value) || value > last_value) {
+      row.fail(expected);
+      continue;
+    }
+    m.soft_stiffness.emplace_back(static_cast<int>(bound), value);
+    last_bound = static_cast<int>(bound), last_value = value;
+  }
 }
 
 /// solver.max_energy_growth: a number > 0 (run/energy_guard.hpp), or "off".

@@ -22,6 +22,10 @@ class SpecReader {
 
   void read_grid(const Object& grid);
 
+  /// mesh (implicit runs): a structured mesh or a Gmsh file; fills the grid from it (read_mesh.cpp).
+  void read_mesh(const Object& mesh);
+  void read_mesh_file(const Object& mesh);
+
   /// A number (the same in every direction) or a vector, all > 0.
   std::optional<Triple> read_cell_size(const Value& v) const;
 
@@ -108,6 +112,8 @@ class SpecReader {
 
   VelocityConditionSpec read_condition(const Object& c) const;
 
+  VelocityConditionSpec read_mesh_condition(const Object& c) const;
+
   /// "one_sided": true on a fixed or slip face (slip with the face's own normal), not with FMPM/XPIC.
   void read_one_sided(const Value& v, VelocityConditionSpec& out) const;
 
@@ -137,6 +143,10 @@ class SpecReader {
   void read_solver(const Object& s);
 
   /// solver.max_energy_growth: a number > 0 (run/energy_guard.hpp), or "off".
+  void read_implicit(const Object& s);
+
+  static void read_soft_stiffness(const Object& o, ImplicitSpec& m);
+
   static void read_energy_guard(const Value& growth, SolverSpec& out);
 
   /// solver.constrain_old_velocity: Gong 2015's wall treatment (extraction A24): the velocity

@@ -1,0 +1,210 @@
+// Aulisa & Capodaglio's implicit particle-Newmark MPM as the shared run loop sees it
+// (run/run_loop.hpp lists the interface): the input's mesh and conditions turned into the stepper
+// of implicit/particle_newmark/, the particles and materials of the explicit set-up
+// (build_simulation), and the step-cutting policy: a step whose Newton iteration fails is halved
+// and retried (solver.implicit.max_step_cuts times), then the run stops with exit 3 naming the
+// step, the time and Newton's residual history, its last output kept.
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "matpoint/core/errors.hpp"
+#include "matpoint/explicit/simulation.hpp"
+#include "matpoint/implicit/particle_newmark/particle_newmark_stepper.hpp"
+#include "matpoint/io/checkpoint.hpp"
+#include "matpoint/mesh/mesh.hpp"
+#include "matpoint/run/run_summary.hpp"
+
+namespace matpoint::implicit {
+
+/// The step's totals for summary.json.
+struct ImplicitTotals {
+  long steps = 0, newton_iterations = 0, step_cuts = 0, max_iterations_in_a_step = 0;
+  double assembly_seconds = 0.0;
+};
+
+template <int D>
+ParticleNewmarkOptions<D> stepper_options(const Spec& spec) {
+  const ImplicitSpec& in = spec.solver.implicit;
+  ParticleNewmarkOptions<D> o;
+  o.newmark = {in.beta, in.gamma};
+  for (int a = 0; a < D; ++a) o.gravity[a] = spec.loads.gravity[a];
+  o.initial_acceleration_from_body_force = in.initial_acceleration_from_body_force;
+  o.flag_rule = in.flag_rule == SoftStiffnessRule::Code ? FlagRule::Code : FlagRule::Paper;
+  for (const auto& [below, value] : in.soft_stiffness) o.soft_stiffness.pieces.push_back({below, value});
+  o.receding_in_gradient = in.receding_in_gradient;
+  o.newton.max_iterations = in.max_iterations;
+  o.newton.increment_tolerance = in.increment_tolerance;
+  o.newton.residual_relative = in.residual_tolerance;
+  o.newton.line_search = in.line_search;
+  constexpr LinearSolverKind kinds[] = {LinearSolverKind::Umfpack, LinearSolverKind::Klu,
+                                        LinearSolverKind::BicgstabIlut, LinearSolverKind::GmresIlut};
+  o.linear.kind = kinds[static_cast<int>(in.linear_solver)];
+  return o;
+}
+
+/// The nodes of a named boundary; throws InputError naming the condition when the mesh has none.
+template <int D>
+const std::vector<Index>& boundary_nodes(const mesh::Mesh<D>& m, const VelocityConditionSpec& c,
+                                         std::size_t k) {
+  const auto it = m.node_sets.find(c.boundary);
+  if (it == m.node_sets.end() || it->second.empty()) {
+    std::string names;
+    for (const auto& [name, nodes] : m.node_sets) names += (names.empty() ? "\"" : ", \"") + name + "\"";
+    throw InputError({{"boundary_conditions[" + std::to_string(k) + "].boundary", "\"" + c.boundary + "\"",
+                       "a boundary of the mesh: one of " + (names.empty() ? std::string("(none)") : names)}});
+  }
+  return it->second;
+}
+
+template <class E>
+class ImplicitMpmSolver {
+ public:
+  static constexpr int D = E::kDim;
+
+  /// Throws InputError (nothing written yet) for what only the set-up finds (an empty body, a
+  /// boundary the mesh does not have, a particle outside the mesh).
+  ImplicitMpmSolver(const Spec& spec, mesh::Mesh<D> background)
+      : spec_(spec), sim_(build_simulation<D>(without_conditions(spec))), mesh_(std::move(background)) {
+    std::vector<char> dirichlet(static_cast<std::size_t>(mesh_.node_count() * D), 0);
+    std::vector<char> on_condition(static_cast<std::size_t>(mesh_.node_count()), 0);
+    std::map<std::pair<Index, int>, double> receding;
+    for (std::size_t k = 0; k < spec.conditions.size(); ++k) {
+      const VelocityConditionSpec& c = spec.conditions[k];
+      for (Index n : boundary_nodes(mesh_, c, k)) {
+        on_condition[static_cast<std::size_t>(n)] = 1;
+        for (int a = 0; a < D; ++a)
+          if (c.kind == ConditionKind::Fixed || a == c.normal_axis)
+            dirichlet[static_cast<std::size_t>(n * D + a)] = 1;
+      }
+      if (c.receding > 0)
+        if (const auto faces = mesh_.boundary_faces.find(c.boundary); faces != mesh_.boundary_faces.end())
+          for (const auto& face : faces->second) receding[face] = c.receding;
+    }
+    auto options = stepper_options<D>(spec);
+    options.not_fully_active = on_condition;  // A13 (b): boundary nodes count as not fully active
+    stepper_.emplace(mesh_, neo_hookean_materials(sim_), options, std::move(dirichlet), std::move(receding));
+    stepper_->initialize(sim_.particles, state_);
+    previous_x_ = sim_.particles.x;
+    dt_ = *spec.solver.dt;
+  }
+  ImplicitMpmSolver(const ImplicitMpmSolver&) = delete;
+  ImplicitMpmSolver& operator=(const ImplicitMpmSolver&) = delete;
+
+  Simulation<D>& sim() { return sim_; }
+  [[nodiscard]] const Simulation<D>& sim() const { return sim_; }
+  [[nodiscard]] const mesh::Mesh<D>& mesh() const { return mesh_; }
+  [[nodiscard]] const ImplicitTotals& totals() const { return totals_; }
+
+  /// solver.dt (a fixed step; cut steps are retried inside step()).
+  [[nodiscard]] double time_step() const { return dt_; }
+
+  /// Advances by h: one Newton solve, or after a failure 2, 4, ... sub-steps (at most
+  /// max_step_cuts halvings); throws NumericalFailure when even the smallest sub-step fails.
+  void step(double h) {
+    double done = 0.0, sub = h;
+    int cuts = 0;
+    while (done < h * (1 - 1e-12)) {
+      sub = std::min(sub, h - done);
+      StepReport report = stepper_->step(sim_.particles, state_, sub);
+      totals_.assembly_seconds += report.assembly_seconds;
+      totals_.newton_iterations += report.newton.iterations();
+      totals_.max_iterations_in_a_step =
+          std::max<long>(totals_.max_iterations_in_a_step, report.newton.iterations());
+      if (!report.ok()) {
+        if (report.lost_particles > 0 || cuts >= spec_.solver.implicit.max_step_cuts) fail(report, sub, cuts);
+        ++cuts, ++totals_.step_cuts;
+        sub *= 0.5;
+        continue;
+      }
+      account_work(sub);
+      done += sub;
+    }
+    ++sim_.step;
+    ++totals_.steps;
+    sim_.time += h;
+    sim_.last_dt = h;
+  }
+  void after_step() {}
+
+  void save(RunCounters&) const {}
+  void restore(const RunCounters&) {}
+
+  void add_facts(RunFacts& facts) const {
+    const auto& ls = stepper_->linear_solver().stats();
+    nlohmann::json s;
+    s["formulation"] = "Aulisa & Capodaglio particle-Newmark MPM";
+    s["element"] = E::kName;
+    s["mesh_elements"] = mesh_.element_count();
+    s["mesh_nodes"] = mesh_.node_count();
+    s["newton_iterations"] = totals_.newton_iterations;
+    s["average_newton_iterations"] = totals_.steps > 0 ? static_cast<double>(totals_.newton_iterations) /
+                                                             static_cast<double>(totals_.steps)
+                                                       : 0.0;
+    s["max_newton_iterations_in_a_step"] = totals_.max_iterations_in_a_step;
+    s["step_cuts"] = totals_.step_cuts;
+    s["linear_solver"] = std::string(stepper_->linear_solver().name());
+    s["assembly_seconds"] = totals_.assembly_seconds;
+    s["factorization_seconds"] = ls.analyze_seconds + ls.factorize_seconds;
+    s["solve_seconds"] = ls.solve_seconds;
+    s["symbolic_analyses"] = ls.analyses;
+    s["factorizations"] = ls.factorizations;
+    facts.implicit = std::move(s);
+  }
+
+ private:
+  static Spec without_conditions(Spec spec) {
+    spec.conditions.clear();  // mesh-boundary conditions: the stepper's, not the explicit grid's
+    return spec;
+  }
+  static std::vector<NeoHookean> neo_hookean_materials(const Simulation<D>& sim) {
+    std::vector<NeoHookean> out;
+    for (const Material& m : sim.materials)
+      out.push_back(std::get<NeoHookean>(m));  // the reader allows no other
+    return out;
+  }
+
+  /// Gravity's work sum m g . dx and impulse M g h over a completed sub-step (the energy balance).
+  void account_work(double h) {
+    Vec<D> g;
+    for (int a = 0; a < D; ++a) g[a] = spec_.loads.gravity[a];
+    double work = 0.0, mass = 0.0;
+    for (std::size_t p = 0; p < sim_.particles.size(); ++p) {
+      mass += sim_.particles.mass[p];
+      work += sim_.particles.mass[p] * g.dot(sim_.particles.x[p] - previous_x_[p]);
+    }
+    sim_.external_work += work;
+    sim_.external_impulse += mass * h * g;
+    previous_x_ = sim_.particles.x;
+  }
+
+  [[noreturn]] void fail(const StepReport& report, double sub, int cuts) const {
+    std::ostringstream what;
+    if (report.lost_particles > 0) {
+      what << report.lost_particles << " particle(s) left the mesh (Aulisa & Capodaglio assume none does)";
+      throw NumericalFailure(sim_.step + 1, sim_.time, "particles", what.str());
+    }
+    what << "Newton did not converge (" << report.newton.message << ") with dt = " << sub << " after " << cuts
+         << " step cut(s); residual norms:";
+    for (const auto& it : report.newton.history) what << ' ' << it.residual_norm;
+    throw NumericalFailure(sim_.step + 1, sim_.time, "Newton iteration", what.str());
+  }
+
+  const Spec& spec_;
+  Simulation<D> sim_;
+  mesh::Mesh<D> mesh_;
+  std::optional<ParticleNewmarkStepper<E, NeoHookean>> stepper_;
+  ImplicitParticleState<D> state_;
+  std::vector<Vec<D>> previous_x_;
+  ImplicitTotals totals_;
+  double dt_ = 0.0;
+};
+
+}  // namespace matpoint::implicit

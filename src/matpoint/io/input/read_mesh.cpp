@@ -1,0 +1,100 @@
+// The input reader, section mesh (implicit runs; docs/input.md): a structured mesh or a Gmsh file.
+// The run's `grid` (particle seeding and the inside-the-domain checks of bodies) is the mesh's
+// bounding box with the mean element size of the refined mesh.
+#include <cmath>
+#include <filesystem>
+
+#include "matpoint/io/input/keywords.hpp"
+#include "matpoint/io/input/spec_reader.hpp"
+#include "matpoint/mesh/gmsh_import.hpp"
+
+namespace matpoint::input_detail {
+
+namespace {
+
+constexpr int kMaxRefine = 8;  // 4^8 = 65 536 elements per coarse element in 2-D
+
+template <int D>
+void mesh_bounding_box(const mesh::Mesh<D>& m, Triple& lo, Triple& hi) {
+  for (int a = 0; a < D; ++a) {
+    lo[a] = kInf, hi[a] = -kInf;
+    for (const auto& x : m.nodes) lo[a] = std::min(lo[a], x[a]), hi[a] = std::max(hi[a], x[a]);
+  }
+}
+
+}  // namespace
+
+void SpecReader::read_mesh(const Object& m) {
+  const std::size_t issues_before = issues_.size();
+  MeshSpec& out = spec_.mesh;
+  out.enabled = true;
+  if (m.has("file")) {
+    read_mesh_file(m);
+  } else {
+    const auto element = m.required("element").choice(kMeshElements);
+    if (!element) return;
+    out.element = *element;
+    dim_ = out.element == MeshElement::Hex8 ? 3 : 2;
+    const auto lo = m.required("min").vector(dim_);
+    const auto hi = m.required("max").vector(dim_);
+    const Value cells = m.required("cells");
+    const auto counts = cells.vector(dim_, {1, 1e6, false, false});
+    set_if(out.ratio, m.optional("ratio").vector(dim_, kPositive));
+    if (!lo || !hi || !counts) return;
+    out.min = *lo, out.max = *hi;
+    for (int a = 0; a < dim_; ++a) {
+      out.cells[static_cast<std::size_t>(a)] = static_cast<int>((*counts)[a]);
+      if ((*counts)[a] != std::floor((*counts)[a]))
+        cells.fail("an array of " + std::to_string(dim_) + " whole numbers >= 1");
+      if (!(out.max[a] > out.min[a]))
+        m.required("max").fail(numbers_text(dim_, kAnyNumber) + ", each greater than mesh.min's");
+    }
+  }
+  set_if(out.refine, m.optional("refine").integer(0, kMaxRefine));
+  if (issues_.size() != issues_before) return;
+  GridSpec& g = spec_.grid;
+  g.dim = dim_;
+  g.min = out.min, g.max = out.max;
+  const double split = std::ldexp(1.0, out.refine);
+  for (int a = 0; a < dim_; ++a) {
+    const auto k = static_cast<std::size_t>(a);
+    g.cells[k] = static_cast<int>(out.cells[k] * split);
+    g.cell_size[a] = (g.max[a] - g.min[a]) / g.cells[k];
+  }
+  grid_ok_ = true;
+}
+
+/// mesh.file: read here already, so that a missing or broken file is an input error (exit 2)
+/// naming the file; its dimension decides the run's.
+void SpecReader::read_mesh_file(const Object& m) {
+  MeshSpec& out = spec_.mesh;
+  out.element = MeshElement::FromFile;
+  const auto file = m.required("file").string();
+  const auto dim = m.required("dim").integer(2, 3);
+  for (const char* key : {"element", "min", "max", "cells", "ratio"})
+    if (m.has(key))
+      m.optional(key).fail(std::string("no ") + key + " with mesh.file (the file gives the mesh)");
+  if (!file || !dim) return;
+  dim_ = static_cast<int>(*dim);
+  out.file = *file;
+  try {
+    Triple lo{}, hi{};
+    std::size_t elements = 0;
+    if (dim_ == 2) {
+      const auto mesh = mesh::read_gmsh<2>(out.file, m.required("file").path());
+      mesh_bounding_box(mesh, lo, hi), elements = static_cast<std::size_t>(mesh.element_count());
+    } else {
+      const auto mesh = mesh::read_gmsh<3>(out.file, m.required("file").path());
+      mesh_bounding_box(mesh, lo, hi), elements = static_cast<std::size_t>(mesh.element_count());
+    }
+    out.min = lo, out.max = hi;
+    // A Gmsh mesh has no cell counts: the mean element size per axis from the element count.
+    const double per_axis = std::pow(static_cast<double>(elements), 1.0 / dim_);
+    for (int a = 0; a < dim_; ++a)
+      out.cells[static_cast<std::size_t>(a)] = std::max(1, static_cast<int>(per_axis));
+  } catch (const InputError& error) {
+    for (const auto& issue : error.issues()) issues_.add(issue.path, issue.value, issue.expected);
+  }
+}
+
+}  // namespace matpoint::input_detail
