@@ -52,10 +52,11 @@ void add_disk_core(GradedParticles& out, const Vec<2>& centre, double R0, int N_
 
 // Boundary layers of the disk (extraction §10.1 [CODE]): dR_i = dR_{i-1} / f, r_i = r_{i-1} + dR_i,
 // N_theta_i = ceil(f N_theta_{i-1}) from N_theta0, m_p = rho r_i (2 pi / N_theta_i) dR_i, for
-// i = 1..N_b with N_b the smallest n with sum_{k<=n} f^-k >= (R - R0) / dR. The pseudocode instead
-// solves sum_{k<=N_b} dR a^k = R - R0 for a given N_b and uses N_theta_i = ceil(N_theta0 / a^i);
-// that is the same geometric grading with a = 1/f, but N_b is not the count that gives the paper's
-// totals, and the outermost ring lands slightly outside R (1.60085 for R = 1.6).
+// i = 1..N_b with N_b the smallest n with sum_{k<=n} f^-k >= (R - R0) / dR, so the last ring lies
+// slightly outside R (1.60085 for R = 1.6, as in the authors' code). The pseudocode instead fits a
+// to a given N_b so that sum_{k<=N_b} dR a^k = R - R0 exactly and takes N_theta_i =
+// ceil(N_theta0 / a^i) without iterating the ceil; with its ceil ring count it gives 46 982
+// particles instead of the paper's 48 739 (extraction §10.1).
 void add_disk_layers(GradedParticles& out, const Vec<2>& centre, double R, double R0, int N_theta0, double dR,
                      double f, double rho) {
   out.layers = R - R0 > 1e-10 * R ? graded_layer_count((R - R0) / dR, f) : 0;
