@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 18> kMeasures{{
+inline constexpr std::array<MeasureInfo, 19> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |B(t) - B(0)| / E_s, B = K + U + D - W_ext (kinetic, strain energy, friction "
      "work of contact, external work), E_s = max(K(0) + U(0), max |W_ext| over the run): the energy given or "
@@ -49,6 +49,11 @@ inline constexpr std::array<MeasureInfo, 18> kMeasures{{
      "a of the least-squares fit x(t) - x(0) = a t^2 / 2 over all output times, x the centre of mass of all "
      "bodies: the acceleration of a body starting from rest, insensitive to velocity oscillations "
      "(examples/rolling-disk)"},
+    {"rolling_disk_mean_relative_error",
+     "Aulisa & Capodaglio eq. (52): the mean over the output times t > 0 of |x(t) - d(t)| / x(t), d the x "
+     "displacement of the first probe (the disk's centre particle), x = g_x t^2 / 3 the rigid disk rolling "
+     "without slip (eq. (49)) with g_x the input's gravity along x (the plane's axes) "
+     "(examples/implicit-rolling-disk)"},
     {"shock_plateau_stress",
      "at the end of the run, the median of -sigma_xx over the particles where -sigma_xx is at least half its "
      "largest value: the plateau behind a compressive shock moving along x (examples/shock-interface)"},

@@ -36,7 +36,8 @@ double max_relative_energy_error(const History& h) {
   if (h.samples.empty()) return kNaN;
   const double b0 = energy_balance(h.samples.front()), scale = energy_scale(h);
   double worst = 0.0;
-  for (const auto& s : h.samples) worst = std::max(worst, std::abs(relative_drift(energy_balance(s) - b0, scale)));
+  for (const auto& s : h.samples)
+    worst = std::max(worst, std::abs(relative_drift(energy_balance(s) - b0, scale)));
   return worst;
 }
 
@@ -128,6 +129,25 @@ double fitted_com_displacement_acceleration_x(const History& h) {
   return sqx / sqq;
 }
 
+/// Aulisa & Capodaglio eq. (52) against eq. (49), x = g_x t^2 / 3: the first probe's x displacement
+/// (history column probe_NAME_ux, after the probe's D position columns). NaN without a probe.
+double rolling_disk_mean_relative_error(const Spec& spec, const History& h) {
+  if (spec.output.probes.empty() || h.samples.size() < 2) return kNaN;
+  const auto ux = static_cast<std::size_t>(h.dim);  // position (D values), then displacement
+  const double gx = spec.loads.gravity[0], t0 = h.samples.front().time;
+  const double d0 = h.samples.front().probes.at(ux);
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto& s : h.samples) {
+    const double t = s.time - t0;
+    if (!(t > 0)) continue;
+    const double exact = gx * t * t / 3.0;
+    sum += std::abs(exact - (s.probes.at(ux) - d0)) / std::abs(exact);
+    ++count;
+  }
+  return count > 0 ? sum / static_cast<double>(count) : kNaN;
+}
+
 /// The block on a rigid incline (examples/incline-friction): gravity (g sin theta, -g cos theta).
 double sliding_block_error(const Spec& spec, const History& h) {
   if (h.samples.size() < 2) return kNaN;
@@ -168,6 +188,7 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
   if (name == "fitted_com_acceleration_x") return fitted_com_acceleration_x(history);
   if (name == "fitted_com_displacement_acceleration_x")
     return fitted_com_displacement_acceleration_x(history);
+  if (name == "rolling_disk_mean_relative_error") return rolling_disk_mean_relative_error(spec, history);
   if (name == "shock_plateau_stress")
     return final_state ? shock_plateau_stress(final_state->stress_xx) : kNaN;
   if (name == "max_relative_energy_error") return max_relative_energy_error(history);

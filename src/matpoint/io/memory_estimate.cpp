@@ -50,7 +50,7 @@ MemoryEstimate estimate_memory(const Spec& spec) {
     double count = 1;
     for (int a = 0; a < d; ++a) {
       double lo = body.min[a], hi = body.max[a];
-      if (body.shape == BodyShape::Disk) lo = body.center[a] - body.radius, hi = body.center[a] + body.radius;
+      if (body.shape == BodyShape::Disk || body.shape == BodyShape::GradedDisk) lo = body.center[a] - body.radius, hi = body.center[a] + body.radius;
       if (body.shape == BodyShape::Polygon) {
         lo = hi = body.polygon.front()[a];
         for (const auto& v : body.polygon) lo = std::min(lo, v[a]), hi = std::max(hi, v[a]);

@@ -73,7 +73,9 @@ struct MaterialSpec {
                                              TimeFunction{{}, {0.0}}};
 };
 
-enum class BodyShape { Box, Disk, Polygon };
+// GradedDisk: Aulisa & Capodaglio's disk of a uniform core and boundary layers refined towards the
+// surface (their Appendix A, as their code builds it: particles/graded_generators.hpp).
+enum class BodyShape { Box, Disk, Polygon, GradedDisk };
 
 struct BodySpec {
   std::string name;
@@ -100,6 +102,10 @@ struct BodySpec {
   // sigma_v = -rho g (surface - height), horizontal stresses k0 sigma_v.
   bool geostatic = false;
   double k0 = 0, geostatic_surface = 0;
+  // GradedDisk (last: aggregate initialisers elsewhere list the members above in order)
+  double core_radius = 0;      // R0, the uniform core
+  int core_divisions = 300;    // N_theta0, particles on the core's outer ring
+  double layer_growth = 1.14;  // f: each layer 1/f as thick, f times as many particles
 };
 
 enum class ConditionKind { Fixed, Slip, Velocity, MovingWall };

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <random>
 
+#include "matpoint/particles/graded_generators.hpp"
+
 namespace matpoint {
 
 namespace {
@@ -19,7 +21,8 @@ bool polygon_contains(const std::vector<std::array<double, 2>>& poly, double x, 
   return inside;
 }
 
-template <int D> Vec<D> initial_velocity(const BodySpec& body, const Vec<D>& x) {
+template <int D>
+Vec<D> initial_velocity(const BodySpec& body, const Vec<D>& x) {
   Vec<D> v;
   double phase = body.sine_phase;
   for (int a = 0; a < D; ++a) phase += body.sine_wave_vector[a] * x[a];
@@ -31,7 +34,8 @@ template <int D> Vec<D> initial_velocity(const BodySpec& body, const Vec<D>& x) 
   return v;
 }
 
-template <int D> void bounding_box(const BodySpec& body, Vec<D>& lo, Vec<D>& hi) {
+template <int D>
+void bounding_box(const BodySpec& body, Vec<D>& lo, Vec<D>& hi) {
   for (int a = 0; a < D; ++a) {
     switch (body.shape) {
       case BodyShape::Box:
@@ -39,6 +43,7 @@ template <int D> void bounding_box(const BodySpec& body, Vec<D>& lo, Vec<D>& hi)
         hi[a] = body.max[a];
         break;
       case BodyShape::Disk:
+      case BodyShape::GradedDisk:
         lo[a] = body.center[a] - body.radius;
         hi[a] = body.center[a] + body.radius;
         break;
@@ -53,20 +58,37 @@ template <int D> void bounding_box(const BodySpec& body, Vec<D>& lo, Vec<D>& hi)
   }
 }
 
-template <int D> void permute(std::vector<Index> const& order, auto& array) {
+template <int D>
+void permute(std::vector<Index> const& order, auto& array) {
   auto copy = array;
   for (std::size_t k = 0; k < order.size(); ++k) array[k] = copy[order[k]];
 }
 
+/// Aulisa & Capodaglio's graded disk (particles/graded_generators.hpp); each particle's domain is
+/// the square of its volume (only the domain-based bases of explicit runs use it).
+std::size_t add_graded_disk(const BodySpec& body, int body_index, const MaterialSpec& material,
+                            ParticleSet<2>& particles) {
+  const GradedParticles g = graded_disk(Vec<2>(body.center[0], body.center[1]), body.radius, body.core_radius,
+                                        body.core_divisions, body.layer_growth, material.density);
+  for (std::size_t k = 0; k < g.position.size(); ++k) {
+    const double side = std::sqrt(g.volume[k]);
+    particles.add(g.position[k], initial_velocity<2>(body, g.position[k]), g.mass[k], g.volume[k],
+                  Vec<2>(side, side), body.material, body_index);
+  }
+  return g.position.size();
+}
+
 }  // namespace
 
-template <int D> bool shape_contains(const BodySpec& body, const Vec<D>& x) {
+template <int D>
+bool shape_contains(const BodySpec& body, const Vec<D>& x) {
   switch (body.shape) {
     case BodyShape::Box:
       for (int a = 0; a < D; ++a)
         if (x[a] < body.min[a] || x[a] > body.max[a]) return false;
       return true;
-    case BodyShape::Disk: {
+    case BodyShape::Disk:
+    case BodyShape::GradedDisk: {
       double r2 = 0;
       for (int a = 0; a < D; ++a) r2 += (x[a] - body.center[a]) * (x[a] - body.center[a]);
       return r2 <= body.radius * body.radius;
@@ -79,8 +101,8 @@ template <int D> bool shape_contains(const BodySpec& body, const Vec<D>& x) {
 }
 
 template <int D>
-std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material, const Grid<D>& grid,
-                          ParticleSet<D>& particles) {
+std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material,
+                          const Grid<D>& grid, ParticleSet<D>& particles) {
   Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
   bounding_box<D>(body, lo, hi);
   std::array<int, D> first{}, last{};
@@ -88,6 +110,8 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
     first[a] = std::max(0, static_cast<int>(std::floor((lo[a] - grid.origin[a]) / grid.h[a])));
     last[a] = std::min(grid.cells[a] - 1, static_cast<int>(std::floor((hi[a] - grid.origin[a]) / grid.h[a])));
   }
+  if constexpr (D == 2)
+    if (body.shape == BodyShape::GradedDisk) return add_graded_disk(body, body_index, material, particles);
   const int ppc = body.particles_per_cell;
   const Vec<D> sub = grid.h / ppc;
   const double volume = sub.prod();
@@ -120,7 +144,8 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
   return particles.size() - before;
 }
 
-template <int D> void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
+template <int D>
+void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
   const std::size_t n = particles.size();
   Index cell_count = 1;
   for (int a = 0; a < D; ++a) cell_count *= grid.cells[a];
@@ -158,10 +183,10 @@ template <int D> void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particle
   }
 }
 
-#define MATPOINT_INSTANTIATE(D)                                                                        \
-  template std::size_t generate_body<D>(const BodySpec&, int, const MaterialSpec&, const Grid<D>&,     \
-                                        ParticleSet<D>&);                                              \
-  template bool shape_contains<D>(const BodySpec&, const Vec<D>&);                                     \
+#define MATPOINT_INSTANTIATE(D)                                                                    \
+  template std::size_t generate_body<D>(const BodySpec&, int, const MaterialSpec&, const Grid<D>&, \
+                                        ParticleSet<D>&);                                          \
+  template bool shape_contains<D>(const BodySpec&, const Vec<D>&);                                 \
   template void sort_by_cell<D>(const Grid<D>&, ParticleSet<D>&);
 MATPOINT_INSTANTIATE(1)
 MATPOINT_INSTANTIATE(2)

@@ -82,7 +82,7 @@ void SpecReader::read_body_material(const Value& v, BodySpec& out) const {
 
 void SpecReader::read_shape(const Value& v, BodySpec& out) const {
   if (!v.expect_object("an object with \"type\": " +
-                       join(std::array{"box", "disk", "sphere", "polygon"}, true)))
+                       join(std::array{"box", "disk", "sphere", "polygon", "graded_disk"}, true)))
     return;
   const std::size_t issues_before = issues_.size();
   const Value type = v.member("type", true);
@@ -105,6 +105,13 @@ void SpecReader::read_shape(const Value& v, BodySpec& out) const {
       else
         read_polygon(Object(v, {"type", "vertices"}), out);
       break;
+    case BodyShape::GradedDisk:
+      if (dim_ != 0 && dim_ != 2)
+        type.fail("\"box\" or \"disk\" (a graded disk is 2-D)");
+      else
+        read_graded_disk(
+            Object(v, {"type", "center", "radius", "core_radius", "core_divisions", "layer_growth"}), out);
+      break;
   }
   if (grid_ok_ && issues_.size() == issues_before) check_inside_grid(v, out);
 }
@@ -120,6 +127,30 @@ void SpecReader::read_box(const Object& s, BodySpec& out) const {
       s.required("max").fail(numbers_text(dim_, kAnyNumber) + ", each greater than the box min's");
       return;
     }
+}
+
+/// Aulisa & Capodaglio's graded disk (Appendix A, the code's variant; extraction §10.1): R0 < R,
+/// N_theta0 >= 7 (one core ring at least), f > 1 with (R - R0) / dR < 1 / (f - 1), dR = R0 / floor(N_theta0 /
+/// 2 pi), so that a finite number of layers reaches R.
+void SpecReader::read_graded_disk(const Object& s, BodySpec& out) const {
+  read_disk(s, out);
+  const auto core = s.required("core_radius").number(kPositive);
+  const auto divisions = s.optional("core_divisions").integer(7, 100000);
+  const auto growth = s.optional("layer_growth").number({1, 10, true, false});
+  set_if(out.core_divisions, divisions);
+  set_if(out.layer_growth, growth);
+  if (!core || !(out.radius > 0)) return;
+  out.core_radius = *core;
+  if (!(*core < out.radius)) {
+    s.required("core_radius").fail("a number > 0 and < radius");
+    return;
+  }
+  const double ring_step = *core / std::floor(out.core_divisions / (2 * 3.141592653589793));
+  if ((out.radius - *core) / ring_step >= 1.0 / (out.layer_growth - 1.0))
+    s.optional("layer_growth")
+        .fail(
+            "a growth f > 1 small enough that layers of thickness dR / f^k reach radius: "
+            "(radius - core_radius) / dR < 1 / (f - 1)");
 }
 
 void SpecReader::read_disk(const Object& s, BodySpec& out) const {
@@ -153,6 +184,7 @@ std::pair<Triple, Triple> SpecReader::bounding_box(const BodySpec& body, int dim
     case BodyShape::Box:
       return {body.min, body.max};
     case BodyShape::Disk:
+    case BodyShape::GradedDisk:
       for (int a = 0; a < dim; ++a) {
         lo[a] = body.center[a] - body.radius;
         hi[a] = body.center[a] + body.radius;

@@ -81,6 +81,8 @@ class SpecReader {
 
   void read_disk(const Object& s, BodySpec& out) const;
 
+  void read_graded_disk(const Object& s, BodySpec& out) const;
+
   static void read_polygon(const Object& s, BodySpec& out);
 
   static std::pair<Triple, Triple> bounding_box(const BodySpec& body, int dim);

@@ -1,0 +1,42 @@
+#!/usr/bin/env python3
+"""Aulisa & Capodaglio eq. (52) from a run's history.csv: the averaged relative error of the centre
+particle's displacement along the plane against the rigid rolling disk, x(t) = g sin(theta) t^2 / 3
+(eq. (49)), over the output times t_i > 0.
+
+    examples/implicit-rolling-disk/error.py OUT_DIR [theta_degrees=45]
+"""
+import csv
+import math
+import sys
+
+
+def rolling_error(out_dir, theta=45.0):
+    """(eq. (52), the centre particle's displacement at the last output)."""
+    g = 9.81
+    rows = list(csv.DictReader(open(f"{out_dir}/history.csv")))
+    x0 = float(rows[0]["probe_centre_x"])
+    errors = []
+    for row in rows[1:]:
+        t = float(row["time"])
+        exact = g * math.sin(math.radians(theta)) * t * t / 3.0
+        errors.append(abs(exact - (float(row["probe_centre_x"]) - x0)) / exact)
+    return sum(errors) / len(errors), float(rows[-1]["probe_centre_x"]) - x0
+
+
+def main(out_dir, theta=45.0):
+    g = 9.81
+    rows = list(csv.DictReader(open(f"{out_dir}/history.csv")))
+    x0 = float(rows[0]["probe_centre_x"])
+    errors = []
+    for row in rows[1:]:
+        t = float(row["time"])
+        exact = g * math.sin(math.radians(theta)) * t * t / 3.0
+        errors.append(abs(exact - (float(row["probe_centre_x"]) - x0)) / exact)
+    last = rows[-1]
+    print(f"steps {len(errors)}, x({float(last['time']):g} s) = {float(last['probe_centre_x']) - x0:.4f} m "
+          f"(rigid rolling {g * math.sin(math.radians(theta)) * float(last['time']) ** 2 / 3:.4f} m), "
+          f"error (52) = {sum(errors) / len(errors):.4e}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], *(float(a) for a in sys.argv[2:3]))
