@@ -3,7 +3,9 @@
 
 Writes DIR/plots/energy.png (energies and the relative energy-balance drift), DIR/plots/momentum.png,
 DIR/plots/probes.png when the input has output.probes (displacement, velocity and stress of each
-probed particle: one colour per probe, one line style per component) and, for 2-D and 3-D runs,
+probed particle: one colour per probe, one line style per component), DIR/plots/newton.png for
+implicit runs (Newton iterations, final residual norm, step cuts and dt per recorded step) and, for
+2-D and 3-D runs,
 DIR/plots/final_state.png (the last particles_NNNNNN.vtu coloured by speed; in 3-D its x-y and
 x-z projections). Axes carry the units of the input's optional `units` block.
 Each image is saved under a temporary name and renamed, so a plot is either whole or absent.
@@ -34,6 +36,7 @@ def axis_label(quantity, units):
     length, time, mass = units.get("length"), units.get("time"), units.get("mass")
     derived = {
         "time": time,
+        "time step": time,
         "length": length,
         "displacement": length,
         "velocity": f"{length}/{time}" if length and time else None,
@@ -113,6 +116,38 @@ def plot_momentum(h, title, plots, units):
     ax.grid(alpha=0.3)
     fig.tight_layout()
     save(fig, plots, "momentum.png")
+
+
+def plot_newton(h, title, plots, units):
+    """Implicit runs: Newton's work per step (history.csv's newton_* columns) and the time step."""
+    if "newton_iterations" not in h:
+        return
+    rows = [k for k, step in enumerate(h["step"]) if step > 0]  # the first row is the initial state
+    if not rows:
+        return
+    time = [h["time"][k] for k in rows]
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
+    top.step(time, [h["newton_iterations"][k] for k in rows], where="post", label="Newton iterations")
+    cuts = [(t, h["newton_iterations"][k]) for t, k in zip(time, rows) if h["step_cuts"][k] > 0]
+    if cuts:
+        top.plot(*zip(*cuts), "rv", label="step cut")
+    top.set_ylabel("iterations per step")
+    twin = top.twinx()
+    twin.semilogy(time, [max(h["newton_residual"][k], 1e-300) for k in rows], "k:", label="final |R|")
+    twin.set_ylabel("final residual norm")
+    lines = top.get_legend_handles_labels()
+    more = twin.get_legend_handles_labels()
+    top.legend(lines[0] + more[0], lines[1] + more[1], loc="best")
+    top.set_title(short_title(title) or "Newton")
+    top.grid(alpha=0.3)
+    steps = [h["dt"][k] for k in rows]
+    bottom.plot(time, steps, ".-")
+    bottom.set_ylim(0, 1.1 * max(steps))  # from 0: a step shortened by round-off to land on end_time is no event
+    bottom.set_xlabel(axis_label("time", units))
+    bottom.set_ylabel(axis_label("time step", units))
+    bottom.grid(alpha=0.3)
+    fig.tight_layout()
+    save(fig, plots, "newton.png")
 
 
 def probe_names(h):
@@ -225,6 +260,7 @@ def main(argv):
     plot_energy(h, title, plots, units)
     plot_momentum(h, title, plots, units)
     plot_probes(h, title, plots, units)
+    plot_newton(h, title, plots, units)
     if "momentum_y" in h:  # 2-D and 3-D
         plot_final_state(directory, title, plots, units)
     return 0

@@ -68,6 +68,85 @@ void expect_fall(int dim, const std::string& initial_acceleration) {
   }
 }
 
+/// fall_input with `solver_extra` replacing solver.dt (a schedule or adaptive steps) and
+/// `loads_extra` added to loads.
+std::string fall_input_with(const std::string& solver_dt, const std::string& implicit_extra,
+                            const std::string& loads_extra = "") {
+  std::string text = fall_input(2, "body_force");
+  auto replace = [&text](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace(R"("dt": 0.01, )", solver_dt);
+  replace(R"("initial_acceleration": "body_force")",
+          R"("initial_acceleration": "body_force")" + implicit_extra);
+  replace(R"("gravity": [0, -9.81])", R"("gravity": [0, -9.81])" + loads_extra);
+  replace(R"("every_steps": 5)", R"("every_steps": 1)");
+  return text;
+}
+
+/// With a^0 = g the Newmark fall is exact for any sequence of steps (a^n = g throughout):
+/// u = g t^2 / 2, v = g t at every row.
+void expect_exact_fall(const RunResult& result) {
+  ASSERT_EQ(result.exit_code, 0) << result.message;
+  const auto& samples = result.history.samples;
+  const double start = samples.front().body_com_position[0][1];
+  for (const auto& s : samples) {
+    EXPECT_NEAR(start - s.body_com_position[0][1], 0.5 * kG * s.time * s.time, 1e-10) << "step " << s.step;
+    EXPECT_NEAR(-s.body_com_velocity[0][1], kG * s.time, 1e-10) << "step " << s.step;
+  }
+}
+
+// solver.implicit.adaptive_dt (implicit/step_size_control.hpp): with easy_iterations above any
+// count Newton needs here, every step is "easy" and the step grows by the factor each step up to
+// max: the k-th step is min(max, dt0 factor^(k-1)) (the rule as docs/input.md states it), except
+// the last one, shortened to end at end_time.
+TEST(ImplicitTimeStep, AdaptiveStepsGrowByTheRuleAndTheFallStaysExact) {
+  const RunResult result = test::run_quietly(
+      parse_spec(fall_input_with(R"("dt": 0.002, )",
+                                 R"(, "adaptive_dt": {"min": 0.001, "max": 0.02, )"
+                                 R"("easy_iterations": 10, "hard_iterations": 15, "factor": 2})")),
+      "implicit_adaptive_fall");
+  expect_exact_fall(result);
+  const auto& samples = result.history.samples;
+  ASSERT_GE(samples.size(), 6U);
+  for (std::size_t k = 1; k + 1 < samples.size(); ++k)
+    EXPECT_DOUBLE_EQ(samples[k].dt, std::min(0.02, 0.002 * std::ldexp(1.0, static_cast<int>(k) - 1))) << k;
+  EXPECT_DOUBLE_EQ(samples.back().time, 0.2);
+}
+
+// solver.implicit.dt_schedule: the step taken from time t is the table's dt(t) (piecewise linear).
+TEST(ImplicitTimeStep, ScheduledStepsFollowTheTable) {
+  const RunResult result = test::run_quietly(
+      parse_spec(fall_input_with("", R"(, "dt_schedule": {"table": [[0, 0.005], [0.1, 0.025]]})")),
+      "implicit_scheduled_fall");
+  expect_exact_fall(result);
+  const auto& samples = result.history.samples;
+  ASSERT_GE(samples.size(), 6U);
+  for (std::size_t k = 1; k + 1 < samples.size(); ++k) {
+    const double t = samples[k - 1].time;
+    EXPECT_NEAR(samples[k].dt, t < 0.1 ? 0.005 + 0.2 * t : 0.025, 1e-15) << k;
+  }
+}
+
+// loads.gravity_scale switched from 1 to 0 just after t1 = 0.1 s (a step boundary with dt = 0.01):
+// the implicit step takes gravity at its end, so steps 1-10 fall with a = g and from step 11 on
+// a = 0. Newmark's velocity update (eq. (19)) over step 11 adds dt (1 - gamma) g, then the body
+// moves uniformly: v = g (t1 + (1 - gamma) dt) at every later row, u grows by v dt per step.
+TEST(ImplicitTimeStep, GravitySwitchedOffFollowsDiscreteNewmark) {
+  const RunResult result = test::run_quietly(
+      parse_spec(
+          fall_input_with(R"("dt": 0.01, )", "", R"(, "gravity_scale": {"table": [[0.1, 1], [0.1001, 0]]})")),
+      "implicit_gravity_off");
+  ASSERT_EQ(result.exit_code, 0) << result.message;
+  const double v_after = kG * (0.1 + (1 - kGamma) * kDt);
+  for (const auto& s : result.history.samples) {
+    const double v = -s.body_com_velocity[0][1];
+    EXPECT_NEAR(v, s.time <= 0.1 + 1e-12 ? kG * s.time : v_after, 1e-10) << "t = " << s.time;
+  }
+}
+
 TEST(ImplicitFreeFall, PaperInitialisationFollowsDiscreteNewmark2D) { expect_fall(2, "zero"); }
 TEST(ImplicitFreeFall, BodyForceInitialisationIsExact2D) { expect_fall(2, "body_force"); }
 TEST(ImplicitFreeFall, PaperInitialisationFollowsDiscreteNewmark3D) { expect_fall(3, "zero"); }

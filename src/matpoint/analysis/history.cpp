@@ -20,6 +20,7 @@ std::string History::csv() const {
   }
   for (int a = 0; a < dim; ++a) out << ",grid_momentum_difference_" << axis[a];
   out << ",checkerboard_velocity,grid_rms_velocity,hourglass_energy,dt";
+  for (const auto& column : solver_columns) out << ',' << column;
   for (const auto& column : probe_columns) out << ',' << column;
   out << '\n' << std::setprecision(12);
   for (const auto& s : samples) {
@@ -35,7 +36,10 @@ std::string History::csv() const {
       for (int a = 0; a < dim; ++a) out << ',' << s.body_com_position[b][a];
     }
     for (int a = 0; a < dim; ++a) out << ',' << s.grid_momentum_difference[a];
-    out << ',' << s.checkerboard_velocity << ',' << s.grid_rms_velocity << ',' << s.hourglass_energy << ',' << s.dt;
+    out << ',' << s.checkerboard_velocity << ',' << s.grid_rms_velocity << ',' << s.hourglass_energy << ','
+        << s.dt;
+    for (std::size_t c = 0; c < solver_columns.size(); ++c)
+      out << ',' << (c < s.solver.size() ? s.solver[c] : std::numeric_limits<double>::quiet_NaN());
     for (std::size_t c = 0; c < probe_columns.size(); ++c)  // nan: a row from before the probe existed
       out << ',' << (c < s.probes.size() ? s.probes[c] : std::numeric_limits<double>::quiet_NaN());
     out << '\n';

@@ -22,13 +22,15 @@ struct HistorySample {
   double checkerboard_velocity = 0.0, grid_rms_velocity = 0.0, hourglass_energy = 0.0;
   std::vector<double> body_kinetic, body_strain, body_mass;
   std::vector<std::array<double, 3>> body_momentum, body_com_velocity, body_com_position;
+  std::vector<double> solver;  // the solver's own columns, History::solver_columns (implicit: Newton)
   std::vector<double> probes;  // output.probes, History::probe_columns values (analysis/probes.hpp)
 };
 
 struct History {
   int dim = 2;
   int body_count = 1;
-  std::vector<std::string> probe_columns;  // the last columns: probe_NAME_x, ... (empty: no probes)
+  std::vector<std::string> solver_columns;  // before the probes: e.g. newton_iterations (implicit)
+  std::vector<std::string> probe_columns;   // the last columns: probe_NAME_x, ... (empty: no probes)
   std::vector<HistorySample> samples;
 
   /// The CSV text: header, then one row per sample (columns documented in docs/output.md).

@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 19> kMeasures{{
+inline constexpr std::array<MeasureInfo, 23> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |B(t) - B(0)| / E_s, B = K + U + D - W_ext (kinetic, strain energy, friction "
      "work of contact, external work), E_s = max(K(0) + U(0), max |W_ext| over the run): the energy given or "
@@ -54,6 +54,23 @@ inline constexpr std::array<MeasureInfo, 19> kMeasures{{
      "displacement of the first probe (the disk's centre particle), x = g_x t^2 / 3 the rigid disk rolling "
      "without slip (eq. (49)) with g_x the input's gravity along x (the plane's axes) "
      "(examples/implicit-rolling-disk)"},
+    {"implicit_step_cuts",
+     "implicit runs: the number of step cuts over the run (a step whose Newton iteration failed is halved "
+     "and "
+     "retried), the sum of history.csv's step_cuts column; 0 when Newton converged at every step"},
+    {"free_vibration_period",
+     "the first probe's free vibration after gravity is switched off (loads.gravity_scale; over the output "
+     "times after its last table time): the mean period of its displacement along the gravity's largest "
+     "component, between upward crossings of its mean over whole cycles (Aulisa & Capodaglio Test B, "
+     "examples/implicit-cantilever)"},
+    {"free_vibration_amplitude_decay",
+     "for the free vibration of free_vibration_period: 1 - (peak-to-peak of the last whole cycle) / "
+     "(peak-to-peak "
+     "of the first): the amplitude lost (Aulisa & Capodaglio Test B)"},
+    {"free_vibration_mean_offset",
+     "for the free vibration of free_vibration_period: the mean displacement over the whole cycles divided "
+     "by the "
+     "peak-to-peak of the first: the oscillation's centre against the undeformed position (Test B)"},
     {"shock_plateau_stress",
      "at the end of the run, the median of -sigma_xx over the particles where -sigma_xx is at least half its "
      "largest value: the plateau behind a compressive shock moving along x (examples/shock-interface)"},

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 namespace matpoint {
 
@@ -148,6 +149,62 @@ double rolling_disk_mean_relative_error(const Spec& spec, const History& h) {
   return count > 0 ? sum / static_cast<double>(count) : kNaN;
 }
 
+/// The free vibration of the first probe after gravity is switched off (Aulisa & Capodaglio Test B,
+/// extraction AT-9): its displacement along the gravity's largest component, over the output times
+/// after loads.gravity_scale's last table time. Cycles run between successive upward crossings of
+/// the signal's mean over whole cycles (linear interpolation between output times).
+struct FreeVibration {
+  double period = kNaN;  // mean over the whole cycles
+  double decay = kNaN;   // 1 - (peak-to-peak of the last cycle) / (of the first)
+  double offset = kNaN;  // mean over the whole cycles / peak-to-peak of the first
+};
+
+FreeVibration free_vibration(const Spec& spec, const History& h) {
+  FreeVibration out;
+  if (spec.output.probes.empty() || h.samples.size() < 4) return out;
+  int axis = 0;
+  for (int a = 1; a < h.dim; ++a)
+    if (std::abs(spec.loads.gravity[a]) > std::abs(spec.loads.gravity[axis])) axis = a;
+  const auto column = static_cast<std::size_t>(h.dim + axis);  // position (D values), then displacement
+  const TimeFunction& scale = spec.loads.gravity_scale;
+  const double t_free = scale.times.empty() ? h.samples.front().time : scale.times.back();
+  std::vector<double> t, u;
+  for (const auto& s : h.samples)
+    if (s.time >= t_free) t.push_back(s.time), u.push_back(s.probes.at(column));
+  if (t.size() < 4) return out;
+  const auto mean_between = [&](double a, double b) {  // trapezoid rule, whole intervals in [a, b]
+    double sum = 0.0, length = 0.0;
+    for (std::size_t k = 1; k < t.size(); ++k)
+      if (t[k - 1] >= a && t[k] <= b)
+        sum += 0.5 * (u[k] + u[k - 1]) * (t[k] - t[k - 1]), length += t[k] - t[k - 1];
+    return length > 0 ? sum / length : kNaN;
+  };
+  const auto upward_crossings = [&](double level) {
+    std::vector<double> times;
+    for (std::size_t k = 1; k < t.size(); ++k)
+      if (u[k - 1] < level && u[k] >= level)
+        times.push_back(t[k - 1] + (level - u[k - 1]) / (u[k] - u[k - 1]) * (t[k] - t[k - 1]));
+    return times;
+  };
+  std::vector<double> crossings = upward_crossings(mean_between(t.front(), t.back()));
+  if (crossings.size() < 2) return out;
+  const double centre = mean_between(crossings.front(), crossings.back());  // over whole cycles
+  crossings = upward_crossings(centre);
+  if (crossings.size() < 2) return out;
+  const auto peak_to_peak = [&](double a, double b) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t k = 0; k < t.size(); ++k)
+      if (t[k] >= a && t[k] <= b) lo = std::min(lo, u[k]), hi = std::max(hi, u[k]);
+    return hi - lo;
+  };
+  const std::size_t n = crossings.size();
+  const double first = peak_to_peak(crossings[0], crossings[1]);
+  out.period = (crossings[n - 1] - crossings[0]) / static_cast<double>(n - 1);
+  out.decay = 1.0 - peak_to_peak(crossings[n - 2], crossings[n - 1]) / first;
+  out.offset = centre / first;
+  return out;
+}
+
 /// The block on a rigid incline (examples/incline-friction): gravity (g sin theta, -g cos theta).
 double sliding_block_error(const Spec& spec, const History& h) {
   if (h.samples.size() < 2) return kNaN;
@@ -189,6 +246,18 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
   if (name == "fitted_com_displacement_acceleration_x")
     return fitted_com_displacement_acceleration_x(history);
   if (name == "rolling_disk_mean_relative_error") return rolling_disk_mean_relative_error(spec, history);
+  if (name == "implicit_step_cuts") {  // the sum of history.csv's step_cuts column (implicit runs)
+    const auto& columns = history.solver_columns;
+    const auto it = std::find(columns.begin(), columns.end(), "step_cuts");
+    if (it == columns.end()) return kNaN;
+    const auto column = static_cast<std::size_t>(it - columns.begin());
+    double cuts = 0.0;
+    for (const auto& s : history.samples) cuts += s.solver.at(column);
+    return cuts;
+  }
+  if (name == "free_vibration_period") return free_vibration(spec, history).period;
+  if (name == "free_vibration_amplitude_decay") return free_vibration(spec, history).decay;
+  if (name == "free_vibration_mean_offset") return free_vibration(spec, history).offset;
   if (name == "shock_plateau_stress")
     return final_state ? shock_plateau_stress(final_state->stress_xx) : kNaN;
   if (name == "max_relative_energy_error") return max_relative_energy_error(history);

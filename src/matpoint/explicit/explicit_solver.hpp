@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -69,7 +70,12 @@ class ExplicitSolver {
 
   /// solver.dt, or the Courant step of the present state (Nairn 2026 §1.8).
   [[nodiscard]] double time_step() const { return stable_time_step(sim_); }
-  void step(double h) { stepper_.step(h); }
+  void step(double h) {
+    // loads.gravity_scale at the step's start (the forward step's body force)
+    const double scale = spec_.loads.gravity_scale(sim_.time);
+    for (int a = 0; a < D; ++a) sim_.gravity[a] = scale * spec_.loads.gravity[a];
+    stepper_.step(h);
+  }
   void after_step() { capped_.check(sim_); }
 
   void save(RunCounters& counters) const {
@@ -83,6 +89,10 @@ class ExplicitSolver {
   void restore(const RunCounters& c) {
     stepper_.restore({c.next_fmpm_time, c.total_mass, {c.fmpm_loops, c.fmpm_passes, c.fmpm_seconds}});
   }
+
+  static std::vector<std::string> history_columns() { return {}; }
+  std::vector<double> history_values() { return {}; }
+  void write_static_outputs(const std::filesystem::path&, std::string&) const {}
 
   void add_facts(RunFacts& facts) const {
     const SolverSpec& s = spec_.solver;

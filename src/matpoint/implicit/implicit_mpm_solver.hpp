@@ -1,12 +1,15 @@
 // Aulisa & Capodaglio's implicit particle-Newmark MPM as the shared run loop sees it
 // (run/run_loop.hpp lists the interface): the input's mesh and conditions turned into the stepper
 // of implicit/particle_newmark/, the particles and materials of the explicit set-up
-// (build_simulation), and the step-cutting policy: a step whose Newton iteration fails is halved
-// and retried (solver.implicit.max_step_cuts times), then the run stops with exit 3 naming the
-// step, the time and Newton's residual history, its last output kept.
+// (build_simulation), the time-step control (step_size_control.hpp), and the step-cutting policy:
+// a step whose Newton iteration fails is halved and retried (solver.implicit.max_step_cuts times),
+// then the run stops with exit 3 naming the step, the time and Newton's residual history, its last
+// output kept. A checkpoint holds the particle accelerations and host elements, so a restart
+// continues the run bit for bit (same thread count).
 #pragma once
 
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -18,16 +21,24 @@
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_stepper.hpp"
+#include "matpoint/implicit/step_size_control.hpp"
 #include "matpoint/io/checkpoint.hpp"
 #include "matpoint/mesh/mesh.hpp"
+#include "matpoint/mesh/mesh_vtu.hpp"
 #include "matpoint/run/run_summary.hpp"
 
 namespace matpoint::implicit {
 
-/// The step's totals for summary.json.
+/// The run's totals for summary.json (a checkpoint keeps them).
 struct ImplicitTotals {
   long steps = 0, newton_iterations = 0, step_cuts = 0, max_iterations_in_a_step = 0;
   double assembly_seconds = 0.0;
+};
+
+/// What history.csv's solver columns need: the totals at the previous row and the last residual.
+struct HistoryMarks {
+  long newton_iterations = 0, step_cuts = 0;  // ImplicitTotals' at the previous history row
+  double newton_residual = 0.0;               // |R| at the end of the last Newton solve
 };
 
 template <int D>
@@ -72,7 +83,10 @@ class ImplicitMpmSolver {
   /// Throws InputError (nothing written yet) for what only the set-up finds (an empty body, a
   /// boundary the mesh does not have, a particle outside the mesh).
   ImplicitMpmSolver(const Spec& spec, mesh::Mesh<D> background)
-      : spec_(spec), sim_(build_simulation<D>(without_conditions(spec))), mesh_(std::move(background)) {
+      : spec_(spec),
+        sim_(build_simulation<D>(without_conditions(spec))),
+        mesh_(std::move(background)),
+        step_size_(spec.solver) {
     std::vector<char> dirichlet(static_cast<std::size_t>(mesh_.node_count() * D), 0);
     std::vector<char> on_condition(static_cast<std::size_t>(mesh_.node_count()), 0);
     std::map<std::pair<Index, int>, double> receding;
@@ -89,11 +103,11 @@ class ImplicitMpmSolver {
           for (const auto& face : faces->second) receding[face] = c.receding;
     }
     auto options = stepper_options<D>(spec);
+    options.gravity = gravity_at(0.0);
     options.not_fully_active = on_condition;  // A13 (b): boundary nodes count as not fully active
     stepper_.emplace(mesh_, neo_hookean_materials(sim_), options, std::move(dirichlet), std::move(receding));
     stepper_->initialize(sim_.particles, state_);
     previous_x_ = sim_.particles.x;
-    dt_ = *spec.solver.dt;
   }
   ImplicitMpmSolver(const ImplicitMpmSolver&) = delete;
   ImplicitMpmSolver& operator=(const ImplicitMpmSolver&) = delete;
@@ -103,39 +117,106 @@ class ImplicitMpmSolver {
   [[nodiscard]] const mesh::Mesh<D>& mesh() const { return mesh_; }
   [[nodiscard]] const ImplicitTotals& totals() const { return totals_; }
 
-  /// solver.dt (a fixed step; cut steps are retried inside step()).
-  [[nodiscard]] double time_step() const { return dt_; }
+  /// The next step: solver.dt, the schedule's, or the adaptive one (cut steps are retried
+  /// inside step()).
+  [[nodiscard]] double time_step() const { return step_size_.next(sim_.time); }
 
   /// Advances by h: one Newton solve, or after a failure 2, 4, ... sub-steps (at most
   /// max_step_cuts halvings); throws NumericalFailure when even the smallest sub-step fails.
   void step(double h) {
     double done = 0.0, sub = h;
-    int cuts = 0;
+    int cuts = 0, most_iterations = 0;
     while (done < h * (1 - 1e-12)) {
       sub = std::min(sub, h - done);
+      stepper_->set_gravity(gravity_at(sim_.time + done + sub));  // at the end of the sub-step
       StepReport report = stepper_->step(sim_.particles, state_, sub);
+      const int iterations = report.newton.iterations();
       totals_.assembly_seconds += report.assembly_seconds;
-      totals_.newton_iterations += report.newton.iterations();
-      totals_.max_iterations_in_a_step =
-          std::max<long>(totals_.max_iterations_in_a_step, report.newton.iterations());
+      totals_.newton_iterations += iterations;
+      totals_.max_iterations_in_a_step = std::max<long>(totals_.max_iterations_in_a_step, iterations);
+      marks_.newton_residual = report.newton.final_residual_norm;
       if (!report.ok()) {
         if (report.lost_particles > 0 || cuts >= spec_.solver.implicit.max_step_cuts) fail(report, sub, cuts);
         ++cuts, ++totals_.step_cuts;
         sub *= 0.5;
         continue;
       }
-      account_work(sub);
+      most_iterations = std::max(most_iterations, iterations);
+      account_work(sub, gravity_at(sim_.time + done + sub));
       done += sub;
     }
     ++sim_.step;
     ++totals_.steps;
     sim_.time += h;
     sim_.last_dt = h;
+    step_size_.after_step(h, cuts, most_iterations);
   }
   void after_step() {}
 
-  void save(RunCounters&) const {}
-  void restore(const RunCounters&) {}
+  /// history.csv: Newton's iterations and the step cuts since the previous row (per step when
+  /// every step is recorded), and the residual norm at the end of the last Newton solve. Called
+  /// once per row.
+  static std::vector<std::string> history_columns() {
+    return {"newton_iterations", "newton_residual", "step_cuts"};
+  }
+  [[nodiscard]] std::vector<double> history_values() {
+    const std::vector<double> row{static_cast<double>(totals_.newton_iterations - marks_.newton_iterations),
+                                  marks_.newton_residual,
+                                  static_cast<double>(totals_.step_cuts - marks_.step_cuts)};
+    marks_.newton_iterations = totals_.newton_iterations;
+    marks_.step_cuts = totals_.step_cuts;
+    return row;
+  }
+
+  /// The element mesh (fixed: the grid is reset every step), shown beside the particles.
+  void write_static_outputs(const std::filesystem::path& dir, std::string& part) const {
+    part = "mesh.vtu";
+    mesh::write_mesh_vtu<D>(dir / part, mesh_);
+  }
+
+  /// The checkpoint's solver state: the particle accelerations a^n and host elements (by storage
+  /// index; the implicit run does not reorder particles), the totals and the adaptive step.
+  void save(RunCounters& c) const {
+    std::vector<double> acceleration, element;
+    for (const auto& a : state_.acceleration) acceleration.insert(acceleration.end(), a.data(), a.data() + D);
+    for (Index e : state_.element) element.push_back(static_cast<double>(e));
+    c.solver_state["acceleration"] = std::move(acceleration);
+    c.solver_state["element"] = std::move(element);
+    c.solver_state["totals"] = {
+        static_cast<double>(totals_.steps), static_cast<double>(totals_.newton_iterations),
+        static_cast<double>(totals_.step_cuts), static_cast<double>(totals_.max_iterations_in_a_step),
+        totals_.assembly_seconds};
+    c.solver_state["history_marks"] = {static_cast<double>(marks_.newton_iterations),
+                                       static_cast<double>(marks_.step_cuts), marks_.newton_residual};
+    c.solver_state["dt"] = {step_size_.current()};
+  }
+  /// Throws InputError when the checkpoint is not an implicit run's of these particles.
+  void restore(const RunCounters& c) {
+    const std::size_t n = sim_.particles.size();
+    const auto get = [&](const char* name, std::size_t size) -> const std::vector<double>& {
+      const auto it = c.solver_state.find(name);
+      if (it == c.solver_state.end() || it->second.size() != size)
+        throw InputError({{"--restart", std::string("solver/") + name,
+                           "the implicit solver's state of " + std::to_string(n) +
+                               " particles (the checkpoint is not an implicit run's of this input)"}});
+      return it->second;
+    };
+    const auto& acceleration = get("acceleration", n * D);
+    const auto& element = get("element", n);
+    const auto& totals = get("totals", 5);
+    const auto& marks = get("history_marks", 3);
+    state_.resize(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      for (int a = 0; a < D; ++a)
+        state_.acceleration[p][a] = acceleration[p * D + static_cast<std::size_t>(a)];
+      state_.element[p] = static_cast<Index>(element[p]);
+    }
+    totals_ = {static_cast<long>(totals[0]), static_cast<long>(totals[1]), static_cast<long>(totals[2]),
+               static_cast<long>(totals[3]), totals[4]};
+    marks_ = {static_cast<long>(marks[0]), static_cast<long>(marks[1]), marks[2]};
+    step_size_.restore(get("dt", 1)[0]);
+    previous_x_ = sim_.particles.x;
+  }
 
   void add_facts(RunFacts& facts) const {
     const auto& ls = stepper_->linear_solver().stats();
@@ -150,6 +231,7 @@ class ImplicitMpmSolver {
                                                        : 0.0;
     s["max_newton_iterations_in_a_step"] = totals_.max_iterations_in_a_step;
     s["step_cuts"] = totals_.step_cuts;
+    if (spec_.solver.implicit.adaptive.enabled) s["adaptive_dt_at_end"] = step_size_.current();
     s["linear_solver"] = std::string(stepper_->linear_solver().name());
     s["assembly_seconds"] = totals_.assembly_seconds;
     s["factorization_seconds"] = ls.analyze_seconds + ls.factorize_seconds;
@@ -171,10 +253,16 @@ class ImplicitMpmSolver {
     return out;
   }
 
-  /// Gravity's work sum m g . dx and impulse M g h over a completed sub-step (the energy balance).
-  void account_work(double h) {
+  /// loads.gravity times loads.gravity_scale at time t.
+  [[nodiscard]] Vec<D> gravity_at(double t) const {
     Vec<D> g;
-    for (int a = 0; a < D; ++a) g[a] = spec_.loads.gravity[a];
+    const double scale = spec_.loads.gravity_scale(t);
+    for (int a = 0; a < D; ++a) g[a] = scale * spec_.loads.gravity[a];
+    return g;
+  }
+
+  /// Gravity's work sum m g . dx and impulse M g h over a completed sub-step (the energy balance).
+  void account_work(double h, const Vec<D>& g) {
     double work = 0.0, mass = 0.0;
     for (std::size_t p = 0; p < sim_.particles.size(); ++p) {
       mass += sim_.particles.mass[p];
@@ -204,7 +292,8 @@ class ImplicitMpmSolver {
   ImplicitParticleState<D> state_;
   std::vector<Vec<D>> previous_x_;
   ImplicitTotals totals_;
-  double dt_ = 0.0;
+  HistoryMarks marks_;
+  StepSizeControl step_size_;
 };
 
 }  // namespace matpoint::implicit

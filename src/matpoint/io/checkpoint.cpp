@@ -118,7 +118,7 @@ std::vector<HistorySample> history_samples(const std::vector<double>& rows, std:
   return out;
 }
 
-// --- probe columns (output.probes): their names, '\n'-joined, and one row per sample ---
+// --- extra history columns: their names, '\n'-joined, and one row per sample ---
 
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
@@ -126,33 +126,73 @@ std::string joined(const std::vector<std::string>& names) {
   return out;
 }
 
-void write_probe_rows(Hdf5Writer& w, const History& history) {
-  const std::size_t width = history.probe_columns.size();
+/// Named extra columns of the history (the probes' or the solver's): their names and one row per
+/// sample, as datasets history/NAMES and history/ROWS.
+using SampleColumns = std::vector<double> HistorySample::*;
+
+struct ColumnGroup {
+  std::string names_dataset, rows_dataset;
+  const std::vector<std::string>& names;
+  SampleColumns values;
+};
+
+ColumnGroup probe_group(const History& history) {
+  return {"history/probe_columns", "history/probes", history.probe_columns, &HistorySample::probes};
+}
+ColumnGroup solver_group(const History& history) {
+  return {"history/solver_columns", "history/solver", history.solver_columns, &HistorySample::solver};
+}
+
+void write_column_rows(Hdf5Writer& w, const History& history, const ColumnGroup& g) {
+  const auto& [names_dataset, rows_dataset, names, values] = g;
+  const std::size_t width = names.size();
   if (width == 0 || history.samples.empty()) return;
   std::vector<double> rows;
   for (const auto& s : history.samples) {
-    std::vector<double> row = s.probes;
-    row.resize(width, std::numeric_limits<double>::quiet_NaN());  // rows from before the probes
+    std::vector<double> row = s.*values;
+    row.resize(width, std::numeric_limits<double>::quiet_NaN());  // rows from before the columns
     rows.insert(rows.end(), row.begin(), row.end());
   }
-  w.write("history/probe_columns", joined(history.probe_columns));
-  w.write("history/probes", rows, {h(history.samples.size()), h(width)});
+  w.write(names_dataset, joined(names));
+  w.write(rows_dataset, rows, {h(history.samples.size()), h(width)});
 }
 
-/// The probe values of the samples when the checkpoint has the same probes as the input; a
+/// The column values of the samples when the checkpoint has the same columns as the input; a
 /// restart that adds or changes probes (output may change) leaves the earlier rows without them.
-void read_probe_rows(const Hdf5Reader& r, History& history) {
-  const std::size_t width = history.probe_columns.size();
-  if (width == 0 || !r.has("history/probe_columns") ||
-      r.text("history/probe_columns") != joined(history.probe_columns))
-    return;
-  const auto shape = r.shape("history/probes");
+void read_column_rows(const Hdf5Reader& r, History& history, const ColumnGroup& g) {
+  const auto& [names_dataset, rows_dataset, names, values] = g;
+  const std::size_t width = names.size();
+  if (width == 0 || !r.has(names_dataset) || r.text(names_dataset) != joined(names)) return;
+  const auto shape = r.shape(rows_dataset);
   if (shape.size() != 2 || shape[0] != history.samples.size() || shape[1] != width)
-    throw Hdf5Error("dataset history/probes has the wrong shape");
-  const auto rows = r.doubles("history/probes", shape);
+    throw Hdf5Error("dataset " + rows_dataset + " has the wrong shape");
+  const auto rows = r.doubles(rows_dataset, shape);
   for (std::size_t k = 0; k < history.samples.size(); ++k)
-    history.samples[k].probes.assign(rows.begin() + static_cast<std::ptrdiff_t>(k * width),
-                                     rows.begin() + static_cast<std::ptrdiff_t>((k + 1) * width));
+    (history.samples[k].*values)
+        .assign(rows.begin() + static_cast<std::ptrdiff_t>(k * width),
+                rows.begin() + static_cast<std::ptrdiff_t>((k + 1) * width));
+}
+
+// --- the solver's own state: one dataset solver/NAME per array, their names '\n'-joined ---
+
+void write_solver_state(Hdf5Writer& w, const RunCounters& run) {
+  std::vector<std::string> names;
+  for (const auto& [name, values] : run.solver_state) {
+    w.write("solver/" + name, values, {h(values.size())});
+    names.push_back(name);
+  }
+  w.write("solver/names", joined(names));
+}
+
+void read_solver_state(const Hdf5Reader& r, RunCounters& run) {
+  run.solver_state.clear();
+  if (!r.has("solver/names")) return;  // a checkpoint of a solver without state of its own
+  std::istringstream names(r.text("solver/names"));
+  for (std::string name; std::getline(names, name);) {
+    const auto shape = r.shape("solver/" + name);
+    if (shape.size() != 1) throw Hdf5Error("dataset solver/" + name + " is not a list");
+    run.solver_state[name] = r.doubles("solver/" + name, shape);
+  }
 }
 
 // --- .pvd entries: times and '\n'-joined names ---
@@ -280,7 +320,9 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   const std::size_t width = kSampleColumns + kBodyColumns * static_cast<std::size_t>(history.body_count);
   w.write("history/body_count", std::int64_t{history.body_count});
   w.write("history/samples", history_rows(history), {h(history.samples.size()), h(width)});
-  write_probe_rows(w, history);
+  write_column_rows(w, history, probe_group(history));
+  write_column_rows(w, history, solver_group(history));
+  write_solver_state(w, run);
 }
 
 template <int D>
@@ -348,7 +390,9 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   const std::size_t width = kSampleColumns + kBodyColumns * static_cast<std::size_t>(bodies);
   if (rows.size() != 2 || rows[1] != width) throw Hdf5Error("dataset history/samples has the wrong width");
   history.samples = history_samples(r.doubles("history/samples", rows), rows[0], history.body_count);
-  read_probe_rows(r, history);
+  read_column_rows(r, history, probe_group(history));
+  read_column_rows(r, history, solver_group(history));
+  read_solver_state(r, run);
 }
 
 InputError damaged(const std::filesystem::path& file, const std::string& what) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -36,6 +37,9 @@ struct RunCounters {
   double step_wall = 0.0, step_cpu = 0.0, wall = 0.0;  // timings summed over the run's sessions
   int threads = 1;                                     // OpenMP threads of the writing run
   PvdEntries results, domains;                         // results.pvd and domains.pvd so far
+  // The solver's own state (the implicit solver's particle accelerations, host elements and
+  // totals): named arrays, stored as datasets solver/NAME.
+  std::map<std::string, std::vector<double>> solver_state;
 };
 
 /// The part of an input that decides the physics: the input without `title`, `output`,

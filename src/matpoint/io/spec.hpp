@@ -75,7 +75,7 @@ struct MaterialSpec {
 
 // GradedDisk: Aulisa & Capodaglio's disk of a uniform core and boundary layers refined towards the
 // surface (their Appendix A, as their code builds it: particles/graded_generators.hpp).
-enum class BodyShape { Box, Disk, Polygon, GradedDisk };
+enum class BodyShape { Box, Disk, Polygon, GradedDisk, GradedBeam };
 
 struct BodySpec {
   std::string name;
@@ -102,10 +102,11 @@ struct BodySpec {
   // sigma_v = -rho g (surface - height), horizontal stresses k0 sigma_v.
   bool geostatic = false;
   double k0 = 0, geostatic_surface = 0;
-  // GradedDisk (last: aggregate initialisers elsewhere list the members above in order)
-  double core_radius = 0;      // R0, the uniform core
-  int core_divisions = 300;    // N_theta0, particles on the core's outer ring
+  // GradedDisk and GradedBeam (last: aggregate initialisers elsewhere list the members above in order)
+  double core_radius = 0;      // R0, the disk's uniform core
+  int core_divisions = 300;    // N_theta0, particles on the disk core's outer ring; the beam's N_H rows
   double layer_growth = 1.14;  // f: each layer 1/f as thick, f times as many particles
+  double core_height = 0;      // H0, the beam's uniform core (box min/max: the beam)
 };
 
 enum class ConditionKind { Fixed, Slip, Velocity, MovingWall };
@@ -151,6 +152,10 @@ struct MeshSpec {
 
 struct LoadSpec {
   Triple gravity{};
+  // loads.gravity_scale: the gravity is gravity_scale(t) * gravity (e.g. switched off after a
+  // while: Aulisa & Capodaglio's Test B). The explicit step takes it at the step's start, the
+  // implicit one at its end (the time of the equilibrium it solves).
+  TimeFunction gravity_scale{{}, {1.0}};
 };
 
 /// FMPM(k) and XPIC(k) settings (Nairn 2026 §2.2-3.4; docs/theory/fmpm.md).
@@ -200,6 +205,16 @@ struct ImplicitSpec {
   SoftStiffnessRule flag_rule = SoftStiffnessRule::Paper;
   std::vector<std::pair<int, double>> soft_stiffness;  // (M_E upper bound, C_E): C_E for M_E < bound
   bool receding_in_gradient = true;                    // A24: grad_x N from the corrected nodes
+  // Time-step control: solver.dt (fixed), or a user schedule dt(t) taken at each step's start, or
+  // adaptive on Newton's iteration count (implicit/step_size_control.hpp).
+  std::optional<TimeFunction> dt_schedule;
+  struct Adaptive {
+    bool enabled = false;
+    double min = 0, max = 0;  // dt bounds
+    int easy_iterations = 3;  // a step that converged in at most this many iterations: dt * factor
+    int hard_iterations = 8;  // at least this many: dt / factor
+    double factor = 1.5;
+  } adaptive;
 };
 
 struct SolverSpec {

@@ -2,19 +2,17 @@
 
 #include <zlib.h>
 
-#include "matpoint/io/atomic_file.hpp"
-#include "matpoint/material/hencky_plasticity.hpp"
-
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
 #include "matpoint/io/atomic_file.hpp"
+#include "matpoint/material/hencky_plasticity.hpp"
 
 namespace matpoint {
 
@@ -111,7 +109,8 @@ std::vector<double> scalars(std::size_t n, Fn&& value_of) {
 }
 
 /// Cauchy stress as 3 x 3 per particle; in 2-D (plane strain) with sigma_zz.
-template <int D> std::vector<double> stress_3x3(const ParticleSet<D>& ps) {
+template <int D>
+std::vector<double> stress_3x3(const ParticleSet<D>& ps) {
   auto out = padded_tensors<D>(ps.size(), [&](std::size_t p) { return ps.stress[p]; });
   if constexpr (D == 2)
     for (std::size_t p = 0; p < ps.size(); ++p) out[9 * p + 8] = ps.stress_zz[p];
@@ -119,16 +118,21 @@ template <int D> std::vector<double> stress_3x3(const ParticleSet<D>& ps) {
 }
 
 /// The three normal stresses (sigma_zz of plane strain in 2-D; 0 outside the model's dimensions).
-template <int D> Vec<3> normal_stresses(const ParticleSet<D>& ps, std::size_t p) {
+template <int D>
+Vec<3> normal_stresses(const ParticleSet<D>& ps, std::size_t p) {
   Vec<3> s = Vec<3>::Zero();
   for (int a = 0; a < D; ++a) s[a] = ps.stress[p](a, a);
   if constexpr (D == 2) s[2] = ps.stress_zz[p];
   return s;
 }
 /// Pressure -tr(sigma)/3 (compression positive).
-template <int D> double pressure(const ParticleSet<D>& ps, std::size_t p) { return -normal_stresses(ps, p).sum() / 3.0; }
+template <int D>
+double pressure(const ParticleSet<D>& ps, std::size_t p) {
+  return -normal_stresses(ps, p).sum() / 3.0;
+}
 /// von Mises stress sqrt(3/2 s : s), s = dev(sigma) of the 3 x 3 stress.
-template <int D> double von_mises(const ParticleSet<D>& ps, std::size_t p) {
+template <int D>
+double von_mises(const ParticleSet<D>& ps, std::size_t p) {
   const Vec<3> normal = normal_stresses(ps, p);
   const double mean = normal.sum() / 3.0;
   double ss = (normal.array() - mean).square().sum();
@@ -157,8 +161,7 @@ std::string particles_vtu(const ParticleSet<D>& ps, const std::vector<std::strin
     for (std::size_t p = 0; p < n; ++p) u[p] = ps.x[p] - (*initial_position)[ps.id[p]];
     point_data << data.array("displacement", "Float64", 3, padded_vectors<D>(u));
   }
-  if (wanted(fields, "stress"))
-    point_data << data.array("stress", "Float64", 9, stress_3x3(ps));
+  if (wanted(fields, "stress")) point_data << data.array("stress", "Float64", 9, stress_3x3(ps));
   if (wanted(fields, "deformation_gradient"))
     point_data << data.array("deformation_gradient", "Float64", 9,
                              padded_tensors<D>(n, [&](std::size_t p) { return ps.F[p]; }));
@@ -181,12 +184,15 @@ std::string particles_vtu(const ParticleSet<D>& ps, const std::vector<std::strin
   if (wanted(fields, "state") && ps.state_stride > 0)
     point_data << data.array("state", "Float64", ps.state_stride, ps.state, state_names);
   if (wanted(fields, "pressure"))  // p = -tr(sigma) / 3 of the 3 x 3 stress (sigma_zz in plane strain)
-    point_data << data.array("pressure", "Float64", 1, scalars(n, [&](std::size_t p) { return pressure(ps, p); }));
+    point_data << data.array("pressure", "Float64", 1,
+                             scalars(n, [&](std::size_t p) { return pressure(ps, p); }));
   if (wanted(fields, "von_mises"))
-    point_data << data.array("von_mises", "Float64", 1, scalars(n, [&](std::size_t p) { return von_mises(ps, p); }));
+    point_data << data.array("von_mises", "Float64", 1,
+                             scalars(n, [&](std::size_t p) { return von_mises(ps, p); }));
   if (wanted(fields, "plastic_strain"))
     point_data << data.array("plastic_strain", "Float64", 1, scalars(n, [&](std::size_t p) {
-                               return ps.plastic(p) ? ps.state[p * ps.state_stride + kEquivalentPlasticStrain] : 0.0;
+                               return ps.plastic(p) ? ps.state[p * ps.state_stride + kEquivalentPlasticStrain]
+                                                    : 0.0;
                              }));
   if (wanted(fields, "yield_state")) {
     std::vector<std::int32_t> state(n, 0);
@@ -260,12 +266,20 @@ void PvdCollection::restore(std::vector<std::pair<double, std::string>> entries)
   if (!entries_.empty()) write();
 }
 
+void PvdCollection::set_static_part(std::string dataset_file) {
+  static_part_ = std::move(dataset_file);
+  if (!entries_.empty()) write();
+}
+
 void PvdCollection::write() const {
   std::ostringstream out;
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   out << std::setprecision(17);
-  for (const auto& [t, file] : entries_)
+  for (const auto& [t, file] : entries_) {
     out << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << file << "\"/>\n";
+    if (!static_part_.empty())
+      out << "    <DataSet timestep=\"" << t << "\" part=\"1\" file=\"" << static_part_ << "\"/>\n";
+  }
   out << "  </Collection>\n</VTKFile>\n";
   write_file_atomically(file_, out.str());
 }

@@ -34,11 +34,15 @@ class PvdCollection {
   /// The (time, file) entries so far; restore() replaces them (a restart) and rewrites the file.
   [[nodiscard]] const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
   void restore(std::vector<std::pair<double, std::string>> entries);
+  /// A dataset that does not change (an implicit run's element mesh): listed as part 1 beside
+  /// every entry's part 0, so ParaView shows it at every time.
+  void set_static_part(std::string dataset_file);
 
  private:
   void write() const;
   std::filesystem::path file_;
   std::vector<std::pair<double, std::string>> entries_;
+  std::string static_part_;
 };
 
 }  // namespace matpoint

@@ -39,6 +39,7 @@ void bounding_box(const BodySpec& body, Vec<D>& lo, Vec<D>& hi) {
   for (int a = 0; a < D; ++a) {
     switch (body.shape) {
       case BodyShape::Box:
+      case BodyShape::GradedBeam:
         lo[a] = body.min[a];
         hi[a] = body.max[a];
         break;
@@ -64,12 +65,18 @@ void permute(std::vector<Index> const& order, auto& array) {
   for (std::size_t k = 0; k < order.size(); ++k) array[k] = copy[order[k]];
 }
 
-/// Aulisa & Capodaglio's graded disk (particles/graded_generators.hpp); each particle's domain is
-/// the square of its volume (only the domain-based bases of explicit runs use it).
-std::size_t add_graded_disk(const BodySpec& body, int body_index, const MaterialSpec& material,
-                            ParticleSet<2>& particles) {
-  const GradedParticles g = graded_disk(Vec<2>(body.center[0], body.center[1]), body.radius, body.core_radius,
-                                        body.core_divisions, body.layer_growth, material.density);
+/// Aulisa & Capodaglio's graded disk or beam (particles/graded_generators.hpp; the beam's left end
+/// at box min x, its mid-height the box's); each particle's domain is the square of its volume
+/// (only the domain-based bases of explicit runs use it).
+std::size_t add_graded(const BodySpec& body, int body_index, const MaterialSpec& material,
+                       ParticleSet<2>& particles) {
+  const GradedParticles g =
+      body.shape == BodyShape::GradedDisk
+          ? graded_disk(Vec<2>(body.center[0], body.center[1]), body.radius, body.core_radius,
+                        body.core_divisions, body.layer_growth, material.density)
+          : graded_beam(body.min[0], 0.5 * (body.min[1] + body.max[1]), body.max[1] - body.min[1],
+                        body.max[0] - body.min[0], body.core_height, body.core_divisions, body.layer_growth,
+                        material.density);
   for (std::size_t k = 0; k < g.position.size(); ++k) {
     const double side = std::sqrt(g.volume[k]);
     particles.add(g.position[k], initial_velocity<2>(body, g.position[k]), g.mass[k], g.volume[k],
@@ -84,6 +91,7 @@ template <int D>
 bool shape_contains(const BodySpec& body, const Vec<D>& x) {
   switch (body.shape) {
     case BodyShape::Box:
+    case BodyShape::GradedBeam:
       for (int a = 0; a < D; ++a)
         if (x[a] < body.min[a] || x[a] > body.max[a]) return false;
       return true;
@@ -111,7 +119,8 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
     last[a] = std::min(grid.cells[a] - 1, static_cast<int>(std::floor((hi[a] - grid.origin[a]) / grid.h[a])));
   }
   if constexpr (D == 2)
-    if (body.shape == BodyShape::GradedDisk) return add_graded_disk(body, body_index, material, particles);
+    if (body.shape == BodyShape::GradedDisk || body.shape == BodyShape::GradedBeam)
+      return add_graded(body, body_index, material, particles);
   const int ppc = body.particles_per_cell;
   const Vec<D> sub = grid.h / ppc;
   const double volume = sub.prod();

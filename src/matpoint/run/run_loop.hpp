@@ -10,6 +10,11 @@
 //   void save(RunCounters&) const;        the solver's own counters into a checkpoint
 //   void restore(const RunCounters&);     and back from one (restart)
 //   void add_facts(RunFacts&) const;      its statistics and warnings for summary.json
+//   static std::vector<std::string> history_columns();   its own history.csv columns, and
+//   std::vector<double> history_values() const;         their values after the last step
+//   void write_static_outputs(const std::filesystem::path& dir, std::string& part);
+//                                  files written once (an element mesh); `part`: the one shown
+//                                  in results.pvd beside the particles ("" for none)
 #pragma once
 
 #include <chrono>
@@ -121,12 +126,18 @@ template <int D, class Solver>
 RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) {
   using namespace run_loop_detail;
   Simulation<D>& sim = solver.sim();
-  History restored{D, static_cast<int>(spec.bodies.size()), probe_columns(spec), {}};
+  History restored{
+      D, static_cast<int>(spec.bodies.size()), Solver::history_columns(), probe_columns(spec), {}};
   RunCounters run = start_state<D>(options, spec, solver, restored);  // may throw InputError
   const bool restarting = !options.restart.empty();
   std::filesystem::create_directories(options.out_dir);
   const auto probe_ids = probe_particle_ids<D>(sim.initial_position, spec.output.probes);
   RunOutputs<D> outputs(spec, options.out_dir, std::move(restored), run, probe_ids);
+  if (spec.output.particles) {
+    std::string part;
+    solver.write_static_outputs(options.out_dir, part);
+    if (!part.empty()) outputs.add_static_part(part);
+  }
 
   OutputSchedule schedule(spec.output, sim.time, run.next_output_time);
   Progress progress(options.progress, spec.solver.end_time);
@@ -135,7 +146,7 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
   if (restarting)
     outputs.write_history();  // drops any rows a killed run wrote after its checkpoint
   else
-    outputs.record(sim);
+    outputs.record(sim, solver.history_values());
 
   RunResult result;
   const auto wall_start = std::chrono::steady_clock::now();
@@ -191,7 +202,7 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
       break;
     }
     if (recorded) {
-      outputs.record(sim);
+      outputs.record(sim, solver.history_values());
       last_recorded_step = sim.step;
     }
     progress.update(sim.step, sim.time);
@@ -205,10 +216,12 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
     result.exit_code = 128 + interrupted;
     std::ostringstream message;
     message << "interrupted by " << signal_name(interrupted) << " after step " << sim.step << ", time "
-            << sim.time << "; continue with --restart " << checkpoints.file().string();
+            << sim.time << "; continue with: matpoint run INPUT --out " << options.out_dir.string()
+            << " --restart " << checkpoints.file().string();
     result.message = message.str();
   }
-  if (result.exit_code != kExitNumerical && last_recorded_step != sim.step) outputs.record(sim);
+  if (result.exit_code != kExitNumerical && last_recorded_step != sim.step)
+    outputs.record(sim, solver.history_values());
   outputs.write_history();
   progress.finish(finished ? "done" : interrupted != 0 ? "interrupted" : "stopped: numerical failure");
 

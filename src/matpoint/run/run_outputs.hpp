@@ -153,9 +153,11 @@ class RunOutputs {
     domains_pvd_.restore(run.domains);
   }
 
-  /// Appends the present state to the history and, with `output.particles`, writes its .vtu.
-  void record(const Simulation<D>& sim) {
+  /// Appends the present state to the history (with the solver's own columns, `solver_values`)
+  /// and, with `output.particles`, writes its .vtu.
+  void record(const Simulation<D>& sim, std::vector<double> solver_values) {
     history_.samples.push_back(history_sample(sim, body_count_, probe_ids_));
+    history_.samples.back().solver = std::move(solver_values);
     if (spec_.output.particles ||
         std::chrono::steady_clock::now() - last_history_write_ > std::chrono::seconds(1))
       write_history();
@@ -174,6 +176,10 @@ class RunOutputs {
     }
     ++outputs_;
   }
+
+  /// A dataset shown at every output time beside the particles (results.pvd part 1): an implicit
+  /// run's element mesh, written once.
+  void add_static_part(const std::string& file) { pvd_.set_static_part(file); }
 
   void write_history() {
     write_file_atomically(out_dir_ / "history.csv", history_.csv());

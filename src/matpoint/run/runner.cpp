@@ -121,12 +121,6 @@ mesh::Mesh<D> build_mesh(const MeshSpec& m) {
 
 template <int D>
 RunResult run_implicit_dim(const Spec& spec, const RunOptions& options) {
-  // The checkpoint does not hold the implicit state yet (particle accelerations): a restart would
-  // continue from a^n = 0, a different run. Refused until it does.
-  if (!options.restart.empty())
-    throw InputError(
-        {{"--restart", options.restart.string(),
-          "a checkpoint of an explicit run (implicit runs cannot continue from a checkpoint yet)"}});
   mesh::Mesh<D> background = build_mesh<D>(spec.mesh);
   return mesh::visit_element_type_of_dim<D>(background.shape, [&](auto element) -> RunResult {
     using E = decltype(element);

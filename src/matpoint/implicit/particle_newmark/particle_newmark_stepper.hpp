@@ -92,6 +92,8 @@ class ParticleNewmarkStepper {
   StepReport step(ParticleSet<D>& particles, ImplicitParticleState<D>& state, double dt);
 
   [[nodiscard]] const LinearSolver& linear_solver() const { return *solver_; }
+  /// The body force per unit mass of the next steps (loads.gravity_scale changes it in time).
+  void set_gravity(const Vec<D>& gravity) { options_.gravity = gravity; }
 
  private:
   bool locate(const ParticleSet<D>& particles, ImplicitParticleState<D>& state, StepReport& report) const;

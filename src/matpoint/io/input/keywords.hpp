@@ -34,11 +34,12 @@ constexpr std::array<Named<CheckKind>, 3> kCheckKinds{{{"verification", CheckKin
 constexpr std::array<Named<bool>, 2> kContactFields{{{"bodies", false}, {"materials", true}}};
 constexpr std::array<Named<NeoHookeanVolumetric>, 2> kVolumetric{
     {{"log_j", NeoHookeanVolumetric::LogJ}, {"half_j_squared", NeoHookeanVolumetric::HalfJSquared}}};
-constexpr std::array<Named<BodyShape>, 5> kShapes{{{"box", BodyShape::Box},
+constexpr std::array<Named<BodyShape>, 6> kShapes{{{"box", BodyShape::Box},
                                                    {"disk", BodyShape::Disk},
                                                    {"sphere", BodyShape::Disk},  // 3-D only
                                                    {"polygon", BodyShape::Polygon},
-                                                   {"graded_disk", BodyShape::GradedDisk}}};
+                                                   {"graded_disk", BodyShape::GradedDisk},
+                                                   {"graded_beam", BodyShape::GradedBeam}}};
 constexpr std::array<Named<ConditionKind>, 4> kConditionKinds{{{"fixed", ConditionKind::Fixed},
                                                                {"slip", ConditionKind::Slip},
                                                                {"velocity", ConditionKind::Velocity},

@@ -81,8 +81,9 @@ void SpecReader::read_body_material(const Value& v, BodySpec& out) const {
 }
 
 void SpecReader::read_shape(const Value& v, BodySpec& out) const {
-  if (!v.expect_object("an object with \"type\": " +
-                       join(std::array{"box", "disk", "sphere", "polygon", "graded_disk"}, true)))
+  if (!v.expect_object(
+          "an object with \"type\": " +
+          join(std::array{"box", "disk", "sphere", "polygon", "graded_disk", "graded_beam"}, true)))
     return;
   const std::size_t issues_before = issues_.size();
   const Value type = v.member("type", true);
@@ -111,6 +112,12 @@ void SpecReader::read_shape(const Value& v, BodySpec& out) const {
       else
         read_graded_disk(
             Object(v, {"type", "center", "radius", "core_radius", "core_divisions", "layer_growth"}), out);
+      break;
+    case BodyShape::GradedBeam:
+      if (dim_ != 0 && dim_ != 2)
+        type.fail("\"box\" or \"disk\" (a graded beam is 2-D)");
+      else
+        read_graded_beam(Object(v, {"type", "min", "max", "core_height", "core_rows", "layer_growth"}), out);
       break;
   }
   if (grid_ok_ && issues_.size() == issues_before) check_inside_grid(v, out);
@@ -153,6 +160,24 @@ void SpecReader::read_graded_disk(const Object& s, BodySpec& out) const {
             "(radius - core_radius) / dR < 1 / (f - 1)");
 }
 
+/// Aulisa & Capodaglio's graded beam (Appendix A, the code's variant; extraction §10.2): the box
+/// min/max is the beam, its left end the clamped one; a core of core_rows (N_H >= 2) rows over
+/// core_height (H0, at most the height), boundary layers of ratio f > 1 on the top, right end and
+/// bottom.
+void SpecReader::read_graded_beam(const Object& s, BodySpec& out) const {
+  read_box(s, out);
+  const auto core = s.required("core_height").number(kPositive);
+  set_if(out.core_divisions, s.required("core_rows").integer(2, 100000));
+  set_if(out.layer_growth, s.optional("layer_growth").number({1, 10, false, false}));
+  if (!core) return;
+  out.core_height = *core;
+  const double height = out.max[1] - out.min[1], length = out.max[0] - out.min[0];
+  if (height > 0 && *core > height)
+    s.required("core_height").fail("a number > 0 and at most the beam's height (box max y - min y)");
+  else if (height > 0 && !(length > 0.5 * (height - *core)))
+    s.required("max").fail("a beam longer than (height - core_height) / 2");
+}
+
 void SpecReader::read_disk(const Object& s, BodySpec& out) const {
   set_if(out.center, s.required("center").vector(dim_));
   set_if(out.radius, s.required("radius").number(kPositive));
@@ -182,6 +207,7 @@ std::pair<Triple, Triple> SpecReader::bounding_box(const BodySpec& body, int dim
   Triple lo{}, hi{};
   switch (body.shape) {
     case BodyShape::Box:
+    case BodyShape::GradedBeam:
       return {body.min, body.max};
     case BodyShape::Disk:
     case BodyShape::GradedDisk:

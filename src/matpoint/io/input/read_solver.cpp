@@ -25,6 +25,10 @@ namespace matpoint::input_detail {
 
 void SpecReader::read_loads(const Object& loads) {
   set_if(spec_.loads.gravity, loads.optional("gravity").vector(dim_));
+  const Value scale = loads.optional("gravity_scale");
+  if (scale.present())
+    set_if(spec_.loads.gravity_scale,
+           read_time_function(scale, "a number or {\"table\": [[t, scale], ...]}: the factor on gravity"));
 }
 
 void SpecReader::read_solver(const Object& s) {
@@ -92,13 +96,14 @@ void SpecReader::read_implicit(const Object& s) {
           "model \"neo_hookean\" with volumetric \"log_j\" under solver.type \"implicit_mpm\" (Aulisa & "
           "Capodaglio eq. (12); the other models are not yet implicit)");
   }
-  out.dt = s.required("dt").number(kPositive);
   set_if(out.end_time, s.required("end_time").number(kPositive));
   set_if(out.max_steps, s.optional("max_steps").integer(0));
   read_energy_guard(s.optional("max_energy_growth"), out);
-  const Object o(s.optional("implicit"), {"beta", "gamma", "initial_acceleration", "newton", "linear_solver",
-                                          "soft_stiffness", "receding_gradient", "max_step_cuts"});
+  const Object o(s.optional("implicit"),
+                 {"beta", "gamma", "initial_acceleration", "newton", "linear_solver", "soft_stiffness",
+                  "receding_gradient", "max_step_cuts", "dt_schedule", "adaptive_dt"});
   ImplicitSpec& m = out.implicit;
+  read_implicit_time_step(s, o, out);
   set_if(m.beta, o.optional("beta").number({0, 0.5, true, false}));
   set_if(m.gamma, o.optional("gamma").number({0, 1, false, false}));
   set_if(m.initial_acceleration_from_body_force,
@@ -116,6 +121,43 @@ void SpecReader::read_implicit(const Object& s) {
   set_if(m.residual_tolerance, n.optional("residual_tolerance").number({0, 1, false, true}));
   set_if(m.line_search, n.optional("line_search").boolean());
   read_soft_stiffness(Object(o.optional("soft_stiffness"), {"flag_rule", "table"}), m);
+}
+
+/// The implicit time step: solver.dt (fixed, or the first adaptive step), or
+/// solver.implicit.dt_schedule (a time function, without solver.dt); adaptive_dt needs solver.dt.
+void SpecReader::read_implicit_time_step(const Object& s, const Object& o, SolverSpec& out) {
+  const Value schedule = o.optional("dt_schedule");
+  const Value adaptive = o.optional("adaptive_dt");
+  if (schedule.present()) {
+    if (s.has("dt")) s.optional("dt").fail("no dt with solver.implicit.dt_schedule (one of them)");
+    if (adaptive.present()) adaptive.fail("no adaptive_dt with dt_schedule (one of them)");
+    const std::string expected = "a time step > 0 or {\"table\": [[t, dt], ...]} with every dt > 0";
+    out.implicit.dt_schedule = read_time_function(schedule, expected);
+    if (out.implicit.dt_schedule)
+      for (double dt : out.implicit.dt_schedule->values)
+        if (!(dt > 0)) {
+          schedule.fail(expected);
+          break;
+        }
+    return;
+  }
+  out.dt = s.required("dt").number(kPositive);
+  if (!adaptive.present()) return;
+  ImplicitSpec::Adaptive& a = out.implicit.adaptive;
+  const Object ad(adaptive, {"min", "max", "easy_iterations", "hard_iterations", "factor"});
+  a.enabled = true;
+  set_if(a.min, ad.required("min").number(kPositive));
+  set_if(a.max, ad.required("max").number(kPositive));
+  set_if(a.easy_iterations, ad.optional("easy_iterations").integer(0, 1000));
+  set_if(a.hard_iterations, ad.optional("hard_iterations").integer(1, 1000));
+  set_if(a.factor, ad.optional("factor").number({1, 10, false, true}));
+  if (a.max < a.min) ad.optional("max").fail("max >= min (" + format_number(a.min) + ")");
+  if (out.dt && (*out.dt < a.min || *out.dt > a.max))
+    s.optional("dt").fail("within adaptive_dt's [min, max] = [" + format_number(a.min) + ", " +
+                          format_number(a.max) + "]");
+  if (a.hard_iterations <= a.easy_iterations)
+    ad.optional("hard_iterations")
+        .fail("more than easy_iterations (" + std::to_string(a.easy_iterations) + ")");
 }
 
 /// soft_stiffness: {"flag_rule": "paper" | "code", "table": [[M, C_E], ...]}: C_E applies to the

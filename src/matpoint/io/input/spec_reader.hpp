@@ -82,6 +82,7 @@ class SpecReader {
   void read_disk(const Object& s, BodySpec& out) const;
 
   void read_graded_disk(const Object& s, BodySpec& out) const;
+  void read_graded_beam(const Object& s, BodySpec& out) const;
 
   static void read_polygon(const Object& s, BodySpec& out);
 
@@ -137,6 +138,7 @@ class SpecReader {
 
   /// A number (a constant) or {"table": [[t0, v0], [t1, v1], ...]} with strictly increasing t.
   static std::optional<TimeFunction> read_time_function(const Value& v, const std::string& expected);
+  void read_implicit_time_step(const Object& s, const Object& implicit, SolverSpec& out);
 
   // --- loads, solver, output, checks ---
 
