@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Keeps docs/input.md in step with the validator (issue 8: the reference cannot drift).
+"""Keeps docs/input.md in step with the validator (the reference cannot drift from the code).
 
     scripts/check_input_reference.py [ROOT]           check (the test suite runs this)
     scripts/check_input_reference.py --write [ROOT]   regenerate the generated tables

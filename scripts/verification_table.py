@@ -12,8 +12,9 @@ with one row per check: benchmark, check, kind, expected, tolerance, measured, s
 the count of each kind:
   verification  the reference is independent of the code (analytic, a paper's value, a converged
                 finer run named in the source); the built-in `matpoint verify` checks, the Courant
-                bounds of `matpoint dispersion` (Gong 2015 (7.29), extraction T16) and the measured
-                Courant limits of the real 1-D loop (`matpoint stability-scan`, extraction S1);
+                bounds of `matpoint dispersion` (Gong 2015 (7.29) with the square) and the measured
+                Courant limits of the real 1-D loop (`matpoint stability-scan`, against an independent
+                numpy reproduction of that loop, docs/theory/stability.md);
   regression    a value from an earlier run of this code, kept beside an independent check;
   guard         a sanity bound that catches only gross failure (an inverted particle).
 An example check's kind is its input's `kind` (default "verification"). Runs go to
@@ -151,7 +152,7 @@ def run_verify(matpoint):
 
 
 # Gong 2015 (7.29) with the square restored: the tight Courant bounds of the linear analysis for
-# N_p^e = 1..4 (extraction test T16, 1e-4).
+# N_p^e = 1..4, to 1e-4 (docs/theory/stability.md, "Tight bound of (7.29)").
 DISPERSION_BOUNDS = {1: 1.0, 2: 1.29904, 3: 1.34479, 4: 1.36035}
 
 
@@ -170,15 +171,15 @@ def run_dispersion(matpoint):
         rows.append((f"dispersion, {n} particle(s) per cell", "tight Courant bound of the linear analysis",
                      "verification", fmt(expected), "0.0001", fmt(measured),
                      "pass" if abs(measured - expected) <= 1e-4 else "FAIL",
-                     "Gong 2015 eq. (7.29) with the square (docs/theory/stability.md); extraction T16"))
+                     "Gong 2015 eq. (7.29) with the square kept (the text drops it before (7.31); docs/theory/stability.md)"))
     return rows
 
 
-# The real 1-D loop's Courant limit (examples/gong-stability-1d): the extraction's independent numpy
-# reproduction (check S1, its §6.5) and, for one particle per cell, the FLIP 2h mode's 1/sqrt(2).
+# The real 1-D loop's Courant limit (examples/gong-stability-1d): an independent numpy reproduction of
+# Gong's loop (docs/theory/stability.md) and, for one particle per cell, the FLIP 2h mode's 1/sqrt(2).
 STABILITY_LIMITS = {1: (0.70711, "analytic: the FLIP 2h mode, sigma <- (1 - 4 CFL^2) sigma (docs/theory/stability.md)"),
-                    2: (0.757, "the extraction's independent reproduction (Gong 2015 extraction §6.5, check S1)"),
-                    4: (0.771, "the extraction's independent reproduction (Gong 2015 extraction §6.5, check S1)")}
+                    2: (0.757, "independent numpy reproduction of Gong 2015's 1-D loop (docs/theory/stability.md, sigma = E(F - 1), 64 cells, 3000 steps)"),
+                    4: (0.771, "independent numpy reproduction of Gong 2015's 1-D loop (docs/theory/stability.md, sigma = E(F - 1), 64 cells, 3000 steps)")}
 SCAN_TOLERANCE = 0.003  # half-width of the bisection bracket
 
 
