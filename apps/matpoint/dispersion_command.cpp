@@ -43,7 +43,7 @@ struct BoundRow {
 const char* relation_description(DispersionRelation relation) {
   return relation == DispersionRelation::Scheme
              ? "Bloch analysis of the scheme (7.15)-(7.16), M = CFL sin(theta/2)"
-             : "eq. (7.29) with the square kept, extraction section 6.4";
+             : "eq. (7.29) with the square kept (the text drops it before (7.31))";
 }
 
 std::string curves_csv(const DispersionOptions& o) {

@@ -90,7 +90,7 @@ void VerifyCommand::add_to(CLI::App& app, std::string scripts_dir) {
       "FLIP increment keeps the wall reaction) instead of Gong's (Gong 2015 forms forces only at interior nodes)");
   command_->add_option("--time", time_,
                        "when the errors of the named problems are measured: T (one period, default) or T/4 "
-                       "(extraction §8: stress first order there)");
+                       "(stress is first order there: docs/verification.md, \"At T/4\")");
 }
 
 int VerifyCommand::run() const {

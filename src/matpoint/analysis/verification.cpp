@@ -398,7 +398,7 @@ std::vector<OrderExpectation> expected_orders(int dim, ShapeKind shape, double a
         {"displacement", AtLeast, 2.0, "Gong 2015 Fig. 4.9 (displacement \"second order\")"});
     for (const char* q : {"stress", "density"})
       e.push_back({q, AtLeast, 2.0,
-                   "extraction §8 (at T the exact strain is 0: second order, as Gong Fig. 4.7 in 1-D); Gong "
+                   "at T the exact strain is 0, so second order, as Gong Fig. 4.7 in 1-D (docs/verification.md, \"At T/4\"); Gong "
                    "Fig. 4.9 says \"between order 1 and order 2\""});
   } else if (small && (shape == ShapeKind::BSpline2 || shape == ShapeKind::BSpline3)) {
     // The B-splines interpolate with an O(h^2) error, and at G = 1e-4 no particle crosses a cell
@@ -434,7 +434,7 @@ std::vector<OrderExpectation> quarter_period_orders(int dim, ShapeKind shape, Ma
                                (shape == ShapeKind::CPDI1 && mapping == Mapping::MlsVelocity);
   if (!linear_elements) return e;
   const std::string src =
-      "extraction §8 trap 1 and A9: at T/4 the particle stress of MPM, IMPM and improved CPDI is first order "
+      "at T/4 the exact strain is not zero (docs/verification.md, \"At T/4\"): the particle stress of MPM, IMPM and improved CPDI is first order "
       "(cellwise-constant strain, error O(h) |d eps/dx|), displacement and velocity second order";
   e.push_back({"stress", Near, 1.0, src});
   e.push_back({"displacement", AtLeast, 2.0, src});
@@ -443,7 +443,7 @@ std::vector<OrderExpectation> quarter_period_orders(int dim, ShapeKind shape, Ma
 }
 
 std::string wall_treatment(const MmsOptions& o) {
-  return o.constrain_old_velocity ? "Gong walls (solver.constrain_old_velocity = true, extraction A24)"
+  return o.constrain_old_velocity ? "Gong walls (solver.constrain_old_velocity = true: Gong 2015 forms forces only at interior nodes)"
                                   : "Nairn walls (the default, solver.constrain_old_velocity = false)";
 }
 
@@ -485,7 +485,7 @@ VerificationCase make_case(const std::string& problem, ShapeKind shape, double a
   if (mapping == Mapping::IMPM && c.options.dim == 1 && amplitude > 1e-3 && !quarter)
     c.error_limits.push_back(
         {"stress", 64, 1e4,
-         "extraction T7: E_stress(1/64) < 1e4 Pa (its independent numpy reproduction: 7.48e3)"});
+         "Gong 2015 Fig. 5.6: E_stress(1/64) < 1e4 Pa (an independent numpy reproduction of Gong's loop gives 7.48e3)"});
   return c;
 }
 
@@ -592,7 +592,7 @@ VerificationOutcome run_case(const VerificationCase& c, const std::function<void
       VerificationCheck check;
       check.name = c.name + ": " + x.quantity + " error at h = 1/" + std::to_string(x.cells);
       check.method =
-          method_name(c.options.shape, c.options.mapping) + ", particle quadrature (extraction A8)";
+          method_name(c.options.shape, c.options.mapping) + ", particle quadrature (Gong eq. (4.48) with current volumes, docs/verification.md)";
       check.measured = r.finished ? mms_quantity(r, x.quantity) : std::nan("");
       check.relation.assign(1, '<');  // (not = "<": a GCC 12 -Wrestrict false positive)
       check.expected = x.below;

@@ -112,7 +112,7 @@ void SpecReader::read_implicit(const Object& s) {
   set_if(m.max_step_cuts, o.optional("max_step_cuts").integer(0, 30));
   const auto corrected = o.optional("receding_gradient").string();
   if (corrected && *corrected != "corrected" && *corrected != "uncorrected")
-    o.optional("receding_gradient").fail("\"corrected\" or \"uncorrected\" (extraction A24)");
+    o.optional("receding_gradient").fail("\"corrected\" or \"uncorrected\" (the paper does not say which; \"corrected\" is the authors' code)");
   if (corrected) m.receding_in_gradient = *corrected == "corrected";
   const Object n(o.optional("newton"),
                  {"increment_tolerance", "max_iterations", "residual_tolerance", "line_search"});
