@@ -13,6 +13,7 @@ struct RunEstimate {
   double steps = 0;      // end_time / dt (at most solver.max_steps)
   double particles = 0;  // an upper estimate (bodies' bounding boxes, io/memory_estimate.hpp)
   double seconds = 0;    // on one thread at the measured rate of this basis and dimension
+  bool implicit = false;  // solver.type "implicit_mpm": seconds counts the assembly only
 };
 
 /// The estimate; steps and seconds are 0 where no wave speed is known (rigid bodies only).
