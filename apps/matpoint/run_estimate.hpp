@@ -9,10 +9,10 @@
 namespace matpoint {
 
 struct RunEstimate {
-  double dt = 0;         // solver.dt, or the Courant number with the fastest elastic wave
-  double steps = 0;      // end_time / dt (at most solver.max_steps)
-  double particles = 0;  // an upper estimate (bodies' bounding boxes, io/memory_estimate.hpp)
-  double seconds = 0;    // on one thread at the measured rate of this basis and dimension
+  double dt = 0;          // solver.dt, or the Courant number with the fastest elastic wave
+  double steps = 0;       // end_time / dt (at most solver.max_steps)
+  double particles = 0;   // an upper estimate (bodies' bounding boxes, io/memory_estimate.hpp)
+  double seconds = 0;     // on one thread at the measured rate of this basis and dimension
   bool implicit = false;  // solver.type "implicit_mpm": seconds counts the assembly only
 };
 

@@ -44,7 +44,8 @@ std::size_t graded_particle_count(const BodySpec& body) {
                          body.core_divisions, body.layer_growth, 1.0)
           .position.size();
     return graded_beam(body.min[0], 0.5 * (body.min[1] + body.max[1]), body.max[1] - body.min[1],
-                       body.max[0] - body.min[0], body.core_height, body.core_divisions, body.layer_growth, 1.0)
+                       body.max[0] - body.min[0], body.core_height, body.core_divisions, body.layer_growth,
+                       1.0)
         .position.size();
   } catch (const std::invalid_argument&) {
     return 0;
