@@ -53,7 +53,7 @@ RunEstimate estimate_run(const Spec& spec) {
   e.particles = estimate_memory(spec).particles;
   const SolverSpec& solver = spec.solver;
   e.dt = solver.dt.value_or(0.0);
-  e.implicit = solver.kind == SolverKind::ImplicitMpm;
+  e.implicit = solver.is_implicit();
   if (e.implicit && solver.implicit.dt_schedule) e.dt = (*solver.implicit.dt_schedule)(0.0);
   if (!solver.dt && !e.implicit) {  // as the run's first step: the fastest elastic (or bulk sound) wave
     double speed = 0.0, h = INFINITY;

@@ -147,6 +147,17 @@ TEST(ImplicitTimeStep, GravitySwitchedOffFollowsDiscreteNewmark) {
   }
 }
 
+// Iaconeta 2017's updated-Lagrangian MPM (solver.type "implicit_ul"): the particles' momentum and
+// m a projected to the nodes (eqs. (38)-(41)) of a rigid translation are v and a themselves
+// (partition of unity), so Newmark at the nodes (43)-(44) and back at the particles (47)-(48) is the
+// particle Newmark of the fall: with a^0 = g exactly u = g t^2 / 2, v = g t. On Q4 cells, as the paper.
+TEST(ImplicitFreeFall, UpdatedLagrangianGridNewmarkIsExact) {
+  std::string text = fall_input(2, "body_force");
+  text.replace(text.find("implicit_mpm"), 12, "implicit_ul");
+  text.replace(text.find(R"("q9")"), 4, R"("q4")");  // the paper's linear cells (quadratic ones refused)
+  expect_exact_fall(test::run_quietly(parse_spec(text), "implicit_ul_fall"));
+}
+
 TEST(ImplicitFreeFall, PaperInitialisationFollowsDiscreteNewmark2D) { expect_fall(2, "zero"); }
 TEST(ImplicitFreeFall, BodyForceInitialisationIsExact2D) { expect_fall(2, "body_force"); }
 TEST(ImplicitFreeFall, PaperInitialisationFollowsDiscreteNewmark3D) { expect_fall(3, "zero"); }

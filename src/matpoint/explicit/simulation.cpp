@@ -160,7 +160,7 @@ void check_setup(const Spec& input) {
   Spec spec = input;
   // An implicit run's conditions live on mesh boundaries (its solver checks their names), not on
   // the grid's faces: the particle set-up is checked without them.
-  if (spec.solver.kind == SolverKind::ImplicitMpm) spec.conditions.clear();
+  if (spec.solver.is_implicit()) spec.conditions.clear();
   switch (spec.grid.dim) {
     case 1:
       (void)build_simulation<1>(spec);

@@ -1,4 +1,5 @@
-// Aulisa & Capodaglio's implicit particle-Newmark MPM as the shared run loop sees it
+// The implicit MPMs (Aulisa & Capodaglio's particle Newmark, Iaconeta 2017's updated-Lagrangian grid
+// Newmark; dynamic or static) as the shared run loop sees it
 // (run/run_loop.hpp lists the interface): the input's mesh and conditions turned into the stepper
 // of implicit/particle_newmark/, the particles and materials of the explicit set-up
 // (build_simulation), the time-step control (step_size_control.hpp), and the step-cutting policy:
@@ -51,6 +52,8 @@ ParticleNewmarkOptions<D> stepper_options(const Spec& spec) {
   o.flag_rule = in.flag_rule == SoftStiffnessRule::Code ? FlagRule::Code : FlagRule::Paper;
   for (const auto& [below, value] : in.soft_stiffness) o.soft_stiffness.pieces.push_back({below, value});
   o.receding_in_gradient = in.receding_in_gradient;
+  o.newmark_at_grid = spec.solver.kind == SolverKind::ImplicitUl;
+  o.static_analysis = in.static_analysis;
   o.newton.max_iterations = in.max_iterations;
   o.newton.increment_tolerance = in.increment_tolerance;
   o.newton.residual_relative = in.residual_tolerance;
@@ -87,6 +90,12 @@ class ImplicitMpmSolver {
         sim_(build_simulation<D>(without_conditions(spec))),
         mesh_(std::move(background)),
         step_size_(spec.solver) {
+    // Iaconeta's projection to the nodes (eqs. (38)-(41)) divides by sum_p N_I m_p: quadratic
+    // elements (Q9, T6) have negative shape values and nodal masses near 0 or below.
+    if (spec.solver.kind == SolverKind::ImplicitUl && (E::kNodes == 9 || E::kNodes == 6))
+      throw InputError({{"mesh.file", spec.mesh.file,
+                         "a mesh of linear elements (T3, Q4, Hex8) under solver.type \"implicit_ul\" (the "
+                         "projection of eqs. (38)-(41) needs shape functions >= 0)"}});
     std::vector<char> dirichlet(static_cast<std::size_t>(mesh_.node_count() * D), 0);
     std::vector<char> on_condition(static_cast<std::size_t>(mesh_.node_count()), 0);
     std::map<std::pair<Index, int>, double> receding;
@@ -116,6 +125,9 @@ class ImplicitMpmSolver {
   [[nodiscard]] const Simulation<D>& sim() const { return sim_; }
   [[nodiscard]] const mesh::Mesh<D>& mesh() const { return mesh_; }
   [[nodiscard]] const ImplicitTotals& totals() const { return totals_; }
+  /// The nodal displacement of the last step (node-major; the whole displacement in a single-step
+  /// static analysis, which starts from the undeformed mesh).
+  [[nodiscard]] const Eigen::VectorXd& last_nodal_increment() const { return stepper_->last_increment(); }
 
   /// The next step: solver.dt, the schedule's, or the adaptive one (cut steps are retried
   /// inside step()).
@@ -221,7 +233,10 @@ class ImplicitMpmSolver {
   void add_facts(RunFacts& facts) const {
     const auto& ls = stepper_->linear_solver().stats();
     nlohmann::json s;
-    s["formulation"] = "Aulisa & Capodaglio particle-Newmark MPM";
+    s["formulation"] = spec_.solver.kind == SolverKind::ImplicitUl
+                           ? "Iaconeta 2017 updated-Lagrangian MPM (Newmark at the grid nodes)"
+                           : "Aulisa & Capodaglio particle-Newmark MPM";
+    s["analysis"] = spec_.solver.implicit.static_analysis ? "static" : "dynamic";
     s["element"] = E::kName;
     s["mesh_elements"] = mesh_.element_count();
     s["mesh_nodes"] = mesh_.node_count();

@@ -107,6 +107,7 @@ struct BodySpec {
   int core_divisions = 300;    // N_theta0, particles on the disk core's outer ring; the beam's N_H rows
   double layer_growth = 1.14;  // f: each layer 1/f as thick, f times as many particles
   double core_height = 0;      // H0, the beam's uniform core (box min/max: the beam)
+  bool gauss_points = false;  // particles at the 2 x 2 (x 2) Gauss points of each cell (particles_per_cell 2)
 };
 
 enum class ConditionKind { Fixed, Slip, Velocity, MovingWall };
@@ -189,14 +190,17 @@ struct MlsSpec {
   CellVolume cell_volume = CellVolume::Full;
 };
 
-/// The implicit particle-Newmark MPM of Aulisa & Capodaglio (§3, extraction §9): its options.
-enum class SolverKind { Explicit, ImplicitMpm };
+/// The implicit MPMs and their options: Aulisa & Capodaglio's particle-Newmark MPM (§3; Newmark at
+/// the particles) and Iaconeta 2017's updated-Lagrangian MPM (§4.1, Algorithm 1; Newmark at the
+/// grid nodes from the particles' projected velocity and acceleration).
+enum class SolverKind { Explicit, ImplicitMpm, ImplicitUl };
 enum class LinearSolverChoice { Umfpack, Klu, BiCgStab, Gmres };
 enum class SoftStiffnessRule { Paper, Code };  // M_E by the paper's rule, or the authors' code's (A13)
 struct ImplicitSpec {
   double beta = 0.3, gamma = 0.5;  // Newmark, eqs. (17)-(19); the paper's tests use 0.3 / 0.5
   bool initial_acceleration_from_body_force = false;  // a^0 = 0 (the paper) or a^0 = b (A17)
-  double increment_tolerance = 1e-9;                  // Newton: ||du_c|| / ||u_c|| per component (A16)
+  bool static_analysis = false;       // no inertia: each step solves equilibrium under the load at its end
+  double increment_tolerance = 1e-9;  // Newton: ||du_c|| / ||u_c|| per component (A16)
   int max_iterations = 20;
   double residual_tolerance = 0;  // optional ||R|| / ||R_0|| test; 0: off
   bool line_search = false;
@@ -219,6 +223,7 @@ struct ImplicitSpec {
 
 struct SolverSpec {
   SolverKind kind = SolverKind::Explicit;
+  [[nodiscard]] bool is_implicit() const { return kind != SolverKind::Explicit; }
   ImplicitSpec implicit;
   UpdateScheme scheme =
       UpdateScheme::MUSL;  // see docs/input.md: robust with FLIP, energy within 0.1 % in two-disks

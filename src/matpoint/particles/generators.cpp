@@ -125,6 +125,12 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
   const Vec<D> sub = grid.h / ppc;
   const double volume = sub.prod();
   const std::size_t before = particles.size();
+  // The offset of sub-cell s in its cell: the sub-cell centre (s + 1/2) h / ppc, or the 2-point
+  // Gauss-Legendre abscissa (1 -+ 1/sqrt(3)) h / 2 (bodies[].placement "gauss").
+  const auto offset = [&](int s, int a) {
+    if (body.gauss_points) return (0.5 + (s == 0 ? -0.5 : 0.5) / std::sqrt(3.0)) * grid.h[a];
+    return (s + 0.5) * sub[a];
+  };
 
   // Walk cells, then sub-cells, in row-major order (x fastest), so particles come out cell-sorted.
   std::array<int, D> cell = first;
@@ -132,7 +138,7 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
     std::array<int, D> s{};
     while (true) {
       Vec<D> x;
-      for (int a = 0; a < D; ++a) x[a] = grid.origin[a] + cell[a] * grid.h[a] + (s[a] + 0.5) * sub[a];
+      for (int a = 0; a < D; ++a) x[a] = grid.origin[a] + cell[a] * grid.h[a] + offset(s[a], a);
       if (shape_contains<D>(body, x))
         particles.add(x, initial_velocity<D>(body, x), material.density * volume, volume, sub, body.material,
                       body_index);

@@ -135,7 +135,7 @@ RunResult run_explicit(const Spec& spec, const RunOptions& options) {
 #ifdef _OPENMP
   if (options.threads > 0) omp_set_num_threads(options.threads);
 #endif
-  if (spec.solver.kind == SolverKind::ImplicitMpm)
+  if (spec.solver.is_implicit())
     return spec.grid.dim == 3 ? run_implicit_dim<3>(spec, options) : run_implicit_dim<2>(spec, options);
   switch (spec.grid.dim) {
     case 1:

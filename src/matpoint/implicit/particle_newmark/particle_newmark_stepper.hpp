@@ -1,5 +1,17 @@
-// One time step of Aulisa & Capodaglio's uncoupled implicit MPM (extraction §9), on a fixed
-// background mesh (u_reset = 0, so x~ = the mesh's nodes):
+// One time step of an implicit MPM with particles as quadrature points, on a fixed background
+// mesh (u_reset = 0, so x~ = the mesh's nodes). Two formulations share it; they differ only in
+// where Newmark's known terms live:
+//   - Aulisa & Capodaglio's particle Newmark (extraction §9): a_p = u~_p / (beta dt^2) - v_p^n /
+//     (beta dt) - (1 - 2 beta) / (2 beta) a_p^n at each particle (eq. (21)); after the step the
+//     particle's own a_p, v_p follow eqs. (19), (17);
+//   - Iaconeta 2017's updated-Lagrangian MPM (§4.1, Algorithm 1): the particles' momentum and
+//     m a are projected to the nodes (eqs. (38)-(41)), Newmark's predictor acts on the nodal
+//     v~_I, a~_I (eqs. (43), (44)), so the particle sees a_p = sum_I N_I a_I; after the step
+//     a_p^{n+1} = sum_I N_I a_I^{n+1} (47) and v_p^{n+1} = v_p^n + dt ((1 - gamma) a_p^n +
+//     gamma a_p^{n+1}) (48, the trapezoidal rule for gamma = 1/2);
+//   - either with `static_analysis`: no inertia, equilibrium under the step's load (Iaconeta §4.1.1,
+//     the static cantilever of §5.1).
+// The steps:
 //   0. locate the particles (host element, xi) in x~; the receding switches from v_p^n (A4);
 //   1. active set, flags M_E and C_E (§5.2), particles sorted by element as quadrature points;
 //   2. Newton on u~ from u~ = 0 (§6), K by AD, the generic assembly and linear solver;
@@ -49,6 +61,8 @@ struct ParticleNewmarkOptions {
   SoftStiffnessTable soft_stiffness;   // C_E(M_E); empty: no soft stiffness
   std::vector<char> not_fully_active;  // per node, for FlagRule::Code (A13)
   bool receding_in_gradient = true;    // A24
+  bool newmark_at_grid = false;        // Iaconeta 2017's nodal Newmark (see the top of this file)
+  bool static_analysis = false;        // no inertia
   NewtonOptions newton;
   LinearSolverOptions linear;
 };
@@ -92,6 +106,8 @@ class ParticleNewmarkStepper {
   StepReport step(ParticleSet<D>& particles, ImplicitParticleState<D>& state, double dt);
 
   [[nodiscard]] const LinearSolver& linear_solver() const { return *solver_; }
+  /// The nodal u~ of the last completed step (node-major, D per node; empty before the first).
+  [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
   /// The body force per unit mass of the next steps (loads.gravity_scale changes it in time).
   void set_gravity(const Vec<D>& gravity) { options_.gravity = gravity; }
 
@@ -101,6 +117,14 @@ class ParticleNewmarkStepper {
                         const NewmarkCoefficients& c);
   void commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state, const Eigen::VectorXd& u,
               double dt) const;
+
+  /// Iaconeta eqs. (38)-(41): the nodal v~_I = sum_p N_I m_p v_p / m_I and a~_I likewise.
+  void project_to_nodes(const ParticleSet<D>& particles, const ImplicitParticleState<D>& state);
+  /// The known part of particle p's acceleration (a_p = u~_p / (beta dt^2) + known): eq. (21) at the
+  /// particle, or Newmark's nodal predictor interpolated to it, or 0 in a static analysis.
+  [[nodiscard]] Vec<D> known_acceleration(const ParticleSet<D>& particles,
+                                          const ImplicitParticleState<D>& state, std::size_t p,
+                                          const NewmarkCoefficients& c) const;
 
   const mesh::Mesh<D>& mesh_;
   std::vector<Material> materials_;
@@ -113,7 +137,48 @@ class ParticleNewmarkStepper {
   ParticleQuadrature<E> q_;
   std::vector<FaceCoefficients<E>> element_receding_;
   ParticleNewmarkSystem<E, Material> system_;
+  std::vector<Vec<D>> node_velocity_, node_acceleration_;  // v~_I, a~_I (grid Newmark only)
+  Eigen::VectorXd last_increment_;
 };
+
+template <class E, class Material>
+void ParticleNewmarkStepper<E, Material>::project_to_nodes(const ParticleSet<D>& particles,
+                                                           const ImplicitParticleState<D>& state) {
+  const auto nodes = static_cast<std::size_t>(mesh_.node_count());
+  std::vector<double> mass(nodes, 0.0);
+  node_velocity_.assign(nodes, Vec<D>::Zero());
+  node_acceleration_.assign(nodes, Vec<D>::Zero());
+  for (std::size_t p = 0; p < particles.size(); ++p) {  // serial: a scatter, cheap beside the assembly
+    const auto N = E::values(state.xi[p]);
+    const auto element = mesh_.element_nodes(state.element[p]);
+    for (int I = 0; I < E::kNodes; ++I) {
+      const auto n = static_cast<std::size_t>(element[static_cast<std::size_t>(I)]);
+      const double w = N[I] * particles.mass[p];
+      mass[n] += w;
+      node_velocity_[n] += w * particles.v[p];
+      node_acceleration_[n] += w * state.acceleration[p];
+    }
+  }
+  for (std::size_t n = 0; n < nodes; ++n)
+    if (mass[n] > 0.0) node_velocity_[n] /= mass[n], node_acceleration_[n] /= mass[n];
+}
+
+template <class E, class Material>
+auto ParticleNewmarkStepper<E, Material>::known_acceleration(const ParticleSet<D>& particles,
+                                                             const ImplicitParticleState<D>& state,
+                                                             std::size_t p,
+                                                             const NewmarkCoefficients& c) const -> Vec<D> {
+  if (options_.static_analysis) return Vec<D>::Zero();
+  if (!options_.newmark_at_grid) return c.known<D>(particles.v[p], state.acceleration[p]);
+  const auto N = E::values(state.xi[p]);
+  const auto element = mesh_.element_nodes(state.element[p]);
+  Vec<D> v = Vec<D>::Zero(), a = Vec<D>::Zero();  // sum_I N_I v~_I, sum_I N_I a~_I
+  for (int I = 0; I < E::kNodes; ++I) {
+    const auto n = static_cast<std::size_t>(element[static_cast<std::size_t>(I)]);
+    v += N[I] * node_velocity_[n], a += N[I] * node_acceleration_[n];
+  }
+  return c.known<D>(v, a);  // the nodal predictor (44) is linear in v~, a~: interpolate, then apply
+}
 
 template <class E, class Material>
 bool ParticleNewmarkStepper<E, Material>::locate(const ParticleSet<D>& particles,
@@ -158,7 +223,7 @@ void ParticleNewmarkStepper<E, Material>::build_quadrature(const ParticleSet<D>&
         if (any_face) bits = receding_switches<E>(x, element_receding_[k], particles.v[p]);
       q_.add(static_cast<Index>(p), state.xi[p], x, particles.mass[p], particles.volume0[p],
              particles.material[p], particles.F[p],
-             c.known<D>(particles.v[p], state.acceleration[p]) - options_.gravity, bits);
+             known_acceleration(particles, state, p, c) - options_.gravity, bits);
     }
     q_.close_block();
   }
@@ -178,6 +243,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   set_ = build_active_set(mesh_.node_count(), mesh_.nodes_per_element, mesh_.connectivity, state.element);
   report.active_elements = static_cast<Index>(set_.active_elements.size());
   const NewmarkCoefficients c(options_.newmark, dt);
+  if (options_.newmark_at_grid && !options_.static_analysis) project_to_nodes(particles, state);
   build_quadrature(particles, state, c);
   typename ParticleNewmarkSystem<E, Material>::StepData data;
   data.mesh = &mesh_;
@@ -197,7 +263,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   }
   if (!receding_.empty()) data.receding = element_receding_;
   data.dirichlet = dirichlet_;
-  data.options.inertia_coefficient = c.displacement;
+  data.options.inertia_coefficient = options_.static_analysis ? 0.0 : c.displacement;
   data.options.receding_in_gradient = options_.receding_in_gradient;
   system_.setup(std::move(data));
 
@@ -210,7 +276,10 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   };
   report.newton =
       newton_solve(timed_assembly, system_.assembly().pattern_version(), *solver_, u, options_.newton);
-  if (report.newton.converged()) commit(particles, state, u, dt);
+  if (report.newton.converged()) {
+    commit(particles, state, u, dt);
+    last_increment_ = std::move(u);
+  }
   return report;
 }
 
@@ -243,10 +312,14 @@ void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, Impl
     for (int I = 0; I < E::kNodes; ++I)
       for (int i = 0; i < D; ++i)
         for (int j = 0; j < D; ++j) H(i, j) += ue[static_cast<std::size_t>(I * D + i)] * q_.G[qo](I, j);
-    const Vec<D> a_old = state.acceleration[p];
-    const Vec<D> a_new = c.displacement * up + c.known<D>(particles.v[p], a_old);  // (19)
-    particles.v[p] += dt * ((1.0 - gamma) * a_old + gamma * a_new);                // (17)
-    state.acceleration[p] = a_new;
+    if (!options_.static_analysis) {
+      // (19) at the particle, or Iaconeta (47): sum_I N_I a_I^{n+1}, the same expression with the
+      // interpolated nodal predictor; then (17) / Iaconeta (48).
+      const Vec<D> a_old = state.acceleration[p];
+      const Vec<D> a_new = c.displacement * up + known_acceleration(particles, state, p, c);
+      particles.v[p] += dt * ((1.0 - gamma) * a_old + gamma * a_new);
+      state.acceleration[p] = a_new;
+    }
     particles.F[p] = H * particles.F[p];
     particles.x[p] += up;
     const Material& m = materials_[static_cast<std::size_t>(particles.material[p])];

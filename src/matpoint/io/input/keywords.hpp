@@ -86,8 +86,9 @@ constexpr std::array<Named<DeformationUpdate>, 2> kDeformationUpdates{
 
 constexpr std::array<Named<MeshElement>, 3> kMeshElements{
     {{"q4", MeshElement::Q4}, {"q9", MeshElement::Q9}, {"hex8", MeshElement::Hex8}}};
-constexpr std::array<Named<SolverKind>, 2> kSolverKinds{
-    {{"explicit", SolverKind::Explicit}, {"implicit_mpm", SolverKind::ImplicitMpm}}};
+constexpr std::array<Named<SolverKind>, 3> kSolverKinds{{{"explicit", SolverKind::Explicit},
+                                                         {"implicit_mpm", SolverKind::ImplicitMpm},
+                                                         {"implicit_ul", SolverKind::ImplicitUl}}};
 constexpr std::array<Named<LinearSolverChoice>, 4> kLinearSolvers{{{"umfpack", LinearSolverChoice::Umfpack},
                                                                    {"klu", LinearSolverChoice::Klu},
                                                                    {"bicgstab", LinearSolverChoice::BiCgStab},

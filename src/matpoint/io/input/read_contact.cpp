@@ -115,10 +115,9 @@ void SpecReader::read_contact_pairs(const Value& list, const std::vector<std::st
 /// Contact runs on the explicit solver's per-increment FMPM path with fixed-domain bases.
 void SpecReader::check_contact_solver(const Value& v) const {
   const SolverSpec& s = spec_.solver;
-  if (s.kind == SolverKind::ImplicitMpm) {
+  if (s.is_implicit()) {
     v.fail(
-        "no contact with solver.type \"implicit_mpm\" (its contact is a mesh boundary condition with "
-        "\"receding\")");
+        "no contact with an implicit solver.type (contact is a mesh boundary condition with \"receding\")");
     return;
   }
   if (dim_ == 1) v.fail("no contact in a 1-D grid (contact needs grid.dim 2 or 3)");

@@ -34,12 +34,13 @@ void SpecReader::read_loads(const Object& loads) {
 void SpecReader::read_solver(const Object& s) {
   SolverSpec& out = spec_.solver;
   set_if(out.kind, s.optional("type").choice(kSolverKinds));
-  if (out.kind == SolverKind::ImplicitMpm) {
+  if (out.is_implicit()) {
     read_implicit(s);
     return;
   }
   if (s.has("implicit"))
-    s.optional("implicit").fail("no implicit options unless solver.type is \"implicit_mpm\"");
+    s.optional("implicit")
+        .fail("no implicit options unless solver.type is \"implicit_mpm\" or \"implicit_ul\"");
   set_if(out.scheme, s.optional("scheme").choice(kSchemes));
   const auto transfer = s.optional("transfer").choice(kTransfers);
   set_if(out.transfer, transfer);
@@ -75,34 +76,47 @@ void SpecReader::read_solver(const Object& s) {
   read_artificial_viscosity(Object(s.optional("artificial_viscosity"), {"linear", "quadratic"}), out);
 }
 
-/// solver.type "implicit_mpm": Aulisa & Capodaglio's particle-Newmark MPM on the input's mesh.
-/// The explicit solver's keys are refused; dt and end_time are required.
+/// solver.type "implicit_mpm" (Aulisa & Capodaglio's particle-Newmark MPM) or "implicit_ul"
+/// (Iaconeta 2017's updated-Lagrangian MPM with Newmark on the grid) on the input's mesh. The
+/// explicit solver's keys are refused; end_time and dt (or a dt_schedule) are required.
 void SpecReader::read_implicit(const Object& s) {
   SolverSpec& out = spec_.solver;
+  const std::string type = out.kind == SolverKind::ImplicitUl ? "implicit_ul" : "implicit_mpm";
   if (!spec_.mesh.enabled)
-    s.optional("type").fail(
-        "\"explicit\" unless the input has a mesh (solver.type \"implicit_mpm\" runs on mesh)");
+    s.optional("type").fail("\"explicit\" unless the input has a mesh (solver.type \"" + type +
+                            "\" runs on one)");
   for (const char* key : {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "basis",
                           "shape", "mapping", "mls", "deformation_update", "courant", "mass_tolerance",
                           "constrain_old_velocity", "artificial_viscosity"})
     if (s.has(key))
-      s.optional(key).fail(std::string("no ") + key +
-                           " with solver.type \"implicit_mpm\" (an explicit solver's key)");
+      s.optional(key).fail(std::string("no ") + key + " with solver.type \"" + type +
+                           "\" (an explicit solver's key)");
   for (std::size_t k = 0; k < spec_.materials.size(); ++k) {
     const MaterialSpec& material = spec_.materials[k];
     if (material.model != MaterialModel::NeoHookean || material.volumetric != NeoHookeanVolumetric::LogJ)
       issues_.add(
           "materials[" + std::to_string(k) + "].model", "\"" + material.name + "\"",
-          "model \"neo_hookean\" with volumetric \"log_j\" under solver.type \"implicit_mpm\" (Aulisa & "
-          "Capodaglio eq. (12); the other models are not yet implicit)");
+          "model \"neo_hookean\" with volumetric \"log_j\" under solver.type \"" + type +
+              "\" (Aulisa & Capodaglio eq. (12), Iaconeta 2017 §7.1; the other models are not yet implicit)");
   }
   set_if(out.end_time, s.required("end_time").number(kPositive));
   set_if(out.max_steps, s.optional("max_steps").integer(0));
   read_energy_guard(s.optional("max_energy_growth"), out);
   const Object o(s.optional("implicit"),
                  {"beta", "gamma", "initial_acceleration", "newton", "linear_solver", "soft_stiffness",
-                  "receding_gradient", "max_step_cuts", "dt_schedule", "adaptive_dt"});
+                  "receding_gradient", "max_step_cuts", "dt_schedule", "adaptive_dt", "analysis"});
   ImplicitSpec& m = out.implicit;
+  if (out.kind == SolverKind::ImplicitUl) m.beta = 0.25;  // Iaconeta 2017 §4.1.1: zeta = 0.25, lambda = 0.5
+  if (out.kind == SolverKind::ImplicitUl && spec_.mesh.file.empty() && spec_.mesh.element == MeshElement::Q9)
+    issues_.add(
+        "mesh.element", "\"q9\"",
+        "\"q4\" or \"hex8\" under solver.type \"implicit_ul\": its projection of the particles' momentum "
+        "to the nodes (Iaconeta 2017 eqs. (38)-(41)) needs shape functions >= 0, and quadratic ones are "
+        "negative in places (nodal masses near 0 or below)");
+  const auto analysis = o.optional("analysis").string();
+  if (analysis && *analysis != "dynamic" && *analysis != "static")
+    o.optional("analysis").fail("\"dynamic\" or \"static\" (no inertia: equilibrium under each step's load)");
+  if (analysis) m.static_analysis = *analysis == "static";
   read_implicit_time_step(s, o, out);
   set_if(m.beta, o.optional("beta").number({0, 0.5, true, false}));
   set_if(m.gamma, o.optional("gamma").number({0, 1, false, false}));
@@ -112,7 +126,10 @@ void SpecReader::read_implicit(const Object& s) {
   set_if(m.max_step_cuts, o.optional("max_step_cuts").integer(0, 30));
   const auto corrected = o.optional("receding_gradient").string();
   if (corrected && *corrected != "corrected" && *corrected != "uncorrected")
-    o.optional("receding_gradient").fail("\"corrected\" or \"uncorrected\" (the paper does not say which; \"corrected\" is the authors' code)");
+    o.optional("receding_gradient")
+        .fail(
+            "\"corrected\" or \"uncorrected\" (the paper does not say which; \"corrected\" is the authors' "
+            "code)");
   if (corrected) m.receding_in_gradient = *corrected == "corrected";
   const Object n(o.optional("newton"),
                  {"increment_tolerance", "max_iterations", "residual_tolerance", "line_search"});

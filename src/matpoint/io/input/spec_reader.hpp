@@ -83,6 +83,7 @@ class SpecReader {
 
   void read_graded_disk(const Object& s, BodySpec& out) const;
   void read_graded_beam(const Object& s, BodySpec& out) const;
+  void read_placement(const Object& b, BodySpec& out) const;
 
   static void read_polygon(const Object& s, BodySpec& out);
 
