@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 23> kMeasures{{
+inline constexpr std::array<MeasureInfo, 24> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |B(t) - B(0)| / E_s, B = K + U + D - W_ext (kinetic, strain energy, friction "
      "work of contact, external work), E_s = max(K(0) + U(0), max |W_ext| over the run): the energy given or "
@@ -54,6 +54,11 @@ inline constexpr std::array<MeasureInfo, 23> kMeasures{{
      "displacement of the first probe (the disk's centre particle), x = g_x t^2 / 3 the rigid disk rolling "
      "without slip (eq. (49)) with g_x the input's gravity along x (the plane's axes) "
      "(examples/implicit-rolling-disk)"},
+    {"node_probe_final_uy",
+     "implicit runs: the y displacement in the last step of the mesh node of the first output.node_probes "
+     "entry, "
+     "at the last output (the whole displacement in a single-step static analysis: "
+     "examples/cantilever-static)"},
     {"implicit_step_cuts",
      "implicit runs: the number of step cuts over the run (a step whose Newton iteration failed is halved "
      "and "

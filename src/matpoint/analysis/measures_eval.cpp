@@ -246,6 +246,14 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
   if (name == "fitted_com_displacement_acceleration_x")
     return fitted_com_displacement_acceleration_x(history);
   if (name == "rolling_disk_mean_relative_error") return rolling_disk_mean_relative_error(spec, history);
+  if (name == "node_probe_final_uy") {  // the first output.node_probes node, last row (implicit runs)
+    if (spec.output.node_probes.empty() || history.samples.empty()) return kNaN;
+    const auto& columns = history.solver_columns;
+    const auto it =
+        std::find(columns.begin(), columns.end(), "node_" + spec.output.node_probes[0].name + "_uy");
+    if (it == columns.end()) return kNaN;
+    return history.samples.back().solver.at(static_cast<std::size_t>(it - columns.begin()));
+  }
   if (name == "implicit_step_cuts") {  // the sum of history.csv's step_cuts column (implicit runs)
     const auto& columns = history.solver_columns;
     const auto it = std::find(columns.begin(), columns.end(), "step_cuts");

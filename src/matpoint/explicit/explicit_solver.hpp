@@ -90,7 +90,7 @@ class ExplicitSolver {
     stepper_.restore({c.next_fmpm_time, c.total_mass, {c.fmpm_loops, c.fmpm_passes, c.fmpm_seconds}});
   }
 
-  static std::vector<std::string> history_columns() { return {}; }
+  [[nodiscard]] std::vector<std::string> history_columns() const { return {}; }
   std::vector<double> history_values() { return {}; }
   void write_static_outputs(const std::filesystem::path&, std::string&) const {}
 

@@ -54,6 +54,7 @@ ParticleNewmarkOptions<D> stepper_options(const Spec& spec) {
   o.receding_in_gradient = in.receding_in_gradient;
   o.newmark_at_grid = spec.solver.kind == SolverKind::ImplicitUl;
   o.static_analysis = in.static_analysis;
+  o.small_strain = in.small_strain;
   o.newton.max_iterations = in.max_iterations;
   o.newton.increment_tolerance = in.increment_tolerance;
   o.newton.residual_relative = in.residual_tolerance;
@@ -117,6 +118,7 @@ class ImplicitMpmSolver {
     stepper_.emplace(mesh_, neo_hookean_materials(sim_), options, std::move(dirichlet), std::move(receding));
     stepper_->initialize(sim_.particles, state_);
     previous_x_ = sim_.particles.x;
+    for (const ProbeSpec& probe : spec.output.node_probes) probe_nodes_.push_back(nearest_node(probe));
   }
   ImplicitMpmSolver(const ImplicitMpmSolver&) = delete;
   ImplicitMpmSolver& operator=(const ImplicitMpmSolver&) = delete;
@@ -166,15 +168,21 @@ class ImplicitMpmSolver {
   void after_step() {}
 
   /// history.csv: Newton's iterations and the step cuts since the previous row (per step when
-  /// every step is recorded), and the residual norm at the end of the last Newton solve. Called
-  /// once per row.
-  static std::vector<std::string> history_columns() {
-    return {"newton_iterations", "newton_residual", "step_cuts"};
+  /// every step is recorded), the residual norm at the end of the last Newton solve, and the last
+  /// step's displacement of each output.node_probes node. Values: called once per row.
+  [[nodiscard]] std::vector<std::string> history_columns() const {
+    std::vector<std::string> columns{"newton_iterations", "newton_residual", "step_cuts"};
+    for (const ProbeSpec& probe : spec_.output.node_probes)
+      for (int a = 0; a < D; ++a) columns.push_back("node_" + probe.name + "_u" + "xyz"[a]);
+    return columns;
   }
   [[nodiscard]] std::vector<double> history_values() {
-    const std::vector<double> row{static_cast<double>(totals_.newton_iterations - marks_.newton_iterations),
-                                  marks_.newton_residual,
-                                  static_cast<double>(totals_.step_cuts - marks_.step_cuts)};
+    std::vector<double> row{static_cast<double>(totals_.newton_iterations - marks_.newton_iterations),
+                            marks_.newton_residual,
+                            static_cast<double>(totals_.step_cuts - marks_.step_cuts)};
+    const Eigen::VectorXd& u = stepper_->last_increment();
+    for (Index node : probe_nodes_)
+      for (int a = 0; a < D; ++a) row.push_back(u.size() > 0 ? u[node * D + a] : 0.0);
     marks_.newton_iterations = totals_.newton_iterations;
     marks_.step_cuts = totals_.step_cuts;
     return row;
@@ -268,6 +276,18 @@ class ImplicitMpmSolver {
     return out;
   }
 
+  /// The mesh node nearest the probe's position (ties: the lowest index).
+  [[nodiscard]] Index nearest_node(const ProbeSpec& probe) const {
+    Vec<D> x;
+    for (int a = 0; a < D; ++a) x[a] = probe.position[a];
+    Index best = 0;
+    for (Index n = 1; n < mesh_.node_count(); ++n)
+      if ((mesh_.nodes[static_cast<std::size_t>(n)] - x).squaredNorm() <
+          (mesh_.nodes[static_cast<std::size_t>(best)] - x).squaredNorm())
+        best = n;
+    return best;
+  }
+
   /// loads.gravity times loads.gravity_scale at time t.
   [[nodiscard]] Vec<D> gravity_at(double t) const {
     Vec<D> g;
@@ -308,6 +328,7 @@ class ImplicitMpmSolver {
   std::vector<Vec<D>> previous_x_;
   ImplicitTotals totals_;
   HistoryMarks marks_;
+  std::vector<Index> probe_nodes_;  // output.node_probes
   StepSizeControl step_size_;
 };
 

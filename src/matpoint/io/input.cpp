@@ -199,8 +199,8 @@ Spec SpecReader::read(const json& root_json) {
                                               "type",
                                               "implicit"}));
   check_one_sided_transfer(top.optional("boundary_conditions"));
-  read_output(Object(top.optional("output"),
-                     {"every_steps", "every_time", "particles", "plots", "fields", "checkpoint", "probes"}));
+  read_output(Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields",
+                                              "checkpoint", "probes", "node_probes"}));
   read_checks(top.optional("checks"));
   read_contact(top.optional("contact"));
   if (grid_ok_ && !spec_.mesh.enabled) check_stencil_fits();

@@ -200,6 +200,7 @@ struct ImplicitSpec {
   double beta = 0.3, gamma = 0.5;  // Newmark, eqs. (17)-(19); the paper's tests use 0.3 / 0.5
   bool initial_acceleration_from_body_force = false;  // a^0 = 0 (the paper) or a^0 = b (A17)
   bool static_analysis = false;       // no inertia: each step solves equilibrium under the load at its end
+  bool small_strain = false;          // geometrically linear, Hooke's law (the linear FEM / Timoshenko check)
   double increment_tolerance = 1e-9;  // Newton: ||du_c|| / ||u_c|| per component (A16)
   int max_iterations = 20;
   double residual_tolerance = 0;  // optional ||R|| / ||R_0|| test; 0: off
@@ -267,9 +268,12 @@ struct ProbeSpec {
 };
 
 struct OutputSpec {
-  long every_steps = 0;             // 0: use every_time
-  double every_time = 0;            // 0 and every_steps == 0: first and last state only
-  bool particles = true;            // write particles_NNNNNN.vtu + results.pvd
+  long every_steps = 0;   // 0: use every_time
+  double every_time = 0;  // 0 and every_steps == 0: first and last state only
+  bool particles = true;  // write particles_NNNNNN.vtu + results.pvd
+  // Implicit runs: mesh nodes whose last-step displacement history.csv records (the node nearest
+  // each position; the whole displacement in a single-step static analysis).
+  std::vector<ProbeSpec> node_probes;
   bool plots = true;                // write plots/*.png at the end (needs python3-matplotlib)
   std::vector<std::string> fields;  // particle fields written to .vtu; empty = all
   CheckpointSpec checkpoint;

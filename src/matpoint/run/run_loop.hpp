@@ -10,7 +10,7 @@
 //   void save(RunCounters&) const;        the solver's own counters into a checkpoint
 //   void restore(const RunCounters&);     and back from one (restart)
 //   void add_facts(RunFacts&) const;      its statistics and warnings for summary.json
-//   static std::vector<std::string> history_columns();   its own history.csv columns, and
+//   std::vector<std::string> history_columns() const;   its own history.csv columns, and
 //   std::vector<double> history_values() const;         their values after the last step
 //   void write_static_outputs(const std::filesystem::path& dir, std::string& part);
 //                                  files written once (an element mesh); `part`: the one shown
@@ -127,7 +127,7 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
   using namespace run_loop_detail;
   Simulation<D>& sim = solver.sim();
   History restored{
-      D, static_cast<int>(spec.bodies.size()), Solver::history_columns(), probe_columns(spec), {}};
+      D, static_cast<int>(spec.bodies.size()), solver.history_columns(), probe_columns(spec), {}};
   RunCounters run = start_state<D>(options, spec, solver, restored);  // may throw InputError
   const bool restarting = !options.restart.empty();
   std::filesystem::create_directories(options.out_dir);

@@ -63,6 +63,7 @@ struct ParticleNewmarkOptions {
   bool receding_in_gradient = true;    // A24
   bool newmark_at_grid = false;        // Iaconeta 2017's nodal Newmark (see the top of this file)
   bool static_analysis = false;        // no inertia
+  bool small_strain = false;           // geometrically linear, Hooke (particle_residual.hpp)
   NewtonOptions newton;
   LinearSolverOptions linear;
 };
@@ -265,6 +266,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   data.dirichlet = dirichlet_;
   data.options.inertia_coefficient = options_.static_analysis ? 0.0 : c.displacement;
   data.options.receding_in_gradient = options_.receding_in_gradient;
+  data.options.small_strain = options_.small_strain;
   system_.setup(std::move(data));
 
   Eigen::VectorXd u = Eigen::VectorXd::Zero(system_.dof_count());  // u~ = 0 (§6)
@@ -323,6 +325,12 @@ void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, Impl
     particles.F[p] = H * particles.F[p];
     particles.x[p] += up;
     const Material& m = materials_[static_cast<std::size_t>(particles.material[p])];
+    if (options_.small_strain) {  // Hooke on sym(F - 1), as the residual (sigma_zz = lambda tr eps)
+      const Mat<D> eps = 0.5 * (particles.F[p] + particles.F[p].transpose()) - Mat<D>::Identity();
+      particles.stress[p] = m.lambda * eps.trace() * Mat<D>::Identity() + 2.0 * m.mu * eps;
+      if constexpr (D == 2) particles.stress_zz[p] = m.lambda * eps.trace();
+      continue;
+    }
     if constexpr (D == 2)
       particles.stress[p] = m.template stress<D>(particles.F[p], particles.stress_zz[p]);
     else

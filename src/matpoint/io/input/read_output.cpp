@@ -43,11 +43,17 @@ void SpecReader::read_output(const Object& o) {
       item.fail(fields_text);
   }
   read_checkpoint_keys(Object(o.optional("checkpoint"), {"every_steps", "every_minutes"}));
-  read_probes(o.optional("probes"));
+  read_probes(o.optional("probes"), spec_.output.probes);
+  const Value nodes = o.optional("node_probes");
+  if (nodes.present() && !spec_.solver.is_implicit())
+    nodes.fail(
+        "no node_probes unless solver.type is implicit (an explicit grid keeps no nodal displacement)");
+  else
+    read_probes(nodes, spec_.output.node_probes);
 }
 
-/// output.probes: [{"name": "tip", "position": [x, y]}, ...] (docs/input.md#output).
-void SpecReader::read_probes(const Value& list) {
+/// output.probes (or node_probes): [{"name": "tip", "position": [x, y]}, ...] (docs/input.md#output).
+void SpecReader::read_probes(const Value& list, std::vector<ProbeSpec>& out) {
   std::set<std::string> names;
   for (const auto& item : list.elements("an array of probe objects {\"name\", \"position\"}")) {
     const Object p(item, {"name", "position"});
@@ -70,7 +76,7 @@ void SpecReader::read_probes(const Value& list) {
       if (grid_ok_ && !box_inside_grid(*x, *x, 0.0))
         position.fail("a point inside the grid " + grid_box_text() + "; it " + overhang_text(*x, *x));
     }
-    spec_.output.probes.push_back(probe);
+    out.push_back(probe);
   }
 }
 

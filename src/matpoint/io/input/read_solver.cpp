@@ -102,9 +102,9 @@ void SpecReader::read_implicit(const Object& s) {
   set_if(out.end_time, s.required("end_time").number(kPositive));
   set_if(out.max_steps, s.optional("max_steps").integer(0));
   read_energy_guard(s.optional("max_energy_growth"), out);
-  const Object o(s.optional("implicit"),
-                 {"beta", "gamma", "initial_acceleration", "newton", "linear_solver", "soft_stiffness",
-                  "receding_gradient", "max_step_cuts", "dt_schedule", "adaptive_dt", "analysis"});
+  const Object o(s.optional("implicit"), {"beta", "gamma", "initial_acceleration", "newton", "linear_solver",
+                                          "soft_stiffness", "receding_gradient", "max_step_cuts",
+                                          "dt_schedule", "adaptive_dt", "analysis", "kinematics"});
   ImplicitSpec& m = out.implicit;
   if (out.kind == SolverKind::ImplicitUl) m.beta = 0.25;  // Iaconeta 2017 §4.1.1: zeta = 0.25, lambda = 0.5
   if (out.kind == SolverKind::ImplicitUl && spec_.mesh.file.empty() && spec_.mesh.element == MeshElement::Q9)
@@ -117,6 +117,10 @@ void SpecReader::read_implicit(const Object& s) {
   if (analysis && *analysis != "dynamic" && *analysis != "static")
     o.optional("analysis").fail("\"dynamic\" or \"static\" (no inertia: equilibrium under each step's load)");
   if (analysis) m.static_analysis = *analysis == "static";
+  const auto kinematics = o.optional("kinematics").string();
+  if (kinematics && *kinematics != "finite" && *kinematics != "small")
+    o.optional("kinematics").fail("\"finite\" or \"small\" (geometrically linear with Hooke's law)");
+  if (kinematics) m.small_strain = *kinematics == "small";
   read_implicit_time_step(s, o, out);
   set_if(m.beta, o.optional("beta").number({0, 0.5, true, false}));
   set_if(m.gamma, o.optional("gamma").number({0, 1, false, false}));

@@ -180,7 +180,7 @@ class SpecReader {
   void read_output(const Object& o);
 
   /// output.probes: [{"name": "tip", "position": [x, y]}, ...] (docs/input.md#output).
-  void read_probes(const Value& list);
+  void read_probes(const Value& list, std::vector<ProbeSpec>& out);
 
   /// output.checkpoint: every N steps and/or every T wall-clock minutes (docs/input.md#output).
   void read_checkpoint_keys(const Object& c);
