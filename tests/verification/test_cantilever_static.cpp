@@ -11,8 +11,10 @@
 // converge quadratically"), and the finest mesh here (h = 0.03125) must be within 4e-4 m of it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "matpoint/implicit/implicit_mpm_solver.hpp"
 #include "matpoint/mesh/structured_mesh.hpp"
@@ -24,8 +26,8 @@ namespace {
 constexpr double kPaperReference = 0.67433;  // Iaconeta 2017 §5.1, finest mesh (h = 0.01)
 
 /// Point A's vertical displacement with cells of size h (one static load step); `small`: the
-/// geometrically linear variant (solver.implicit.kinematics "small").
-double point_a_deflection(double h, bool small = false) {
+/// geometrically linear variant (solver.implicit.kinematics "small"); `newton`: the solve's history.
+double point_a_deflection(double h, bool small = false, implicit::NewtonResult* newton = nullptr) {
   Spec spec = test::load_example("cantilever-static");
   spec.solver.implicit.small_strain = small;
   const int nx = static_cast<int>(std::lround(8.0 / h)), ny = static_cast<int>(std::lround(1.0 / h));
@@ -42,6 +44,7 @@ double point_a_deflection(double h, bool small = false) {
     if ((solver.mesh().nodes[static_cast<std::size_t>(n)] - Vec<2>(8.0, 0.5)).norm() < 1e-9) end = n;
   EXPECT_LT((solver.mesh().nodes[static_cast<std::size_t>(end)] - Vec<2>(8.0, 0.5)).norm(), 1e-9);
   const double uy = solver.last_nodal_increment()[2 * end + 1];
+  if (newton != nullptr) *newton = solver.last_newton();
   std::printf("cantilever h = %g: Point A u_y = %.6f m (%ld Newton iterations)\n", h, uy,
               solver.totals().newton_iterations);
   return uy;
@@ -64,6 +67,30 @@ TEST(CantileverStatic, PointAMatchesTheQ4FemAndConvergesQuadratically) {
     previous_error = error;
   }
   EXPECT_LT(previous_error, 4e-4);  // h = 0.03125
+}
+
+// Newton with the AD Jacobian converges quadratically (Iaconeta 2017 §3: the consistent
+// linearisation): after the residual's peak (the first iterate of one large load step overshoots),
+// |R_{k+1}| <= C |R_k|^2 with one C: C_k = |R_{k+1}| / |R_k|^2 must not grow by more than 10 from one
+// iteration to the next (with a fixed linear factor q it would grow by 1/q per iteration, 1/q > 300
+// for the contractions seen here). Iterations at round-off
+// (below 1e-9 of the first residual) are left out; h = 0.125, one load step.
+TEST(CantileverStatic, NewtonConvergesQuadratically) {
+  implicit::NewtonResult newton;
+  point_a_deflection(0.125, false, &newton);
+  ASSERT_TRUE(newton.converged());
+  std::vector<double> r;
+  for (const auto& it : newton.history) r.push_back(it.residual_norm);
+  std::printf("residual norms:");
+  for (double x : r) std::printf(" %.3e", x);
+  std::printf("\n");
+  const auto peak = static_cast<std::size_t>(std::max_element(r.begin(), r.end()) - r.begin());
+  std::vector<double> c;  // C_k = r_{k+1} / r_k^2 from the peak on, above round-off
+  for (std::size_t k = peak; k + 1 < r.size() && r[k + 1] > 1e-9 * r[0]; ++k)
+    c.push_back(r[k + 1] / (r[k] * r[k]));
+  for (std::size_t k = 0; k < c.size(); ++k) std::printf("  |R_k+1| / |R_k|^2 = %.3e\n", c[k]);
+  ASSERT_GE(c.size(), 2U);
+  for (std::size_t k = 1; k < c.size(); ++k) EXPECT_LT(c[k], 10.0 * c[k - 1]) << "pair " << k;
 }
 
 // The geometrically linear variant (Hooke, reference gradients) is the linear Q4 FEM of the same

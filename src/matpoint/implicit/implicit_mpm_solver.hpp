@@ -127,6 +127,8 @@ class ImplicitMpmSolver {
   [[nodiscard]] const Simulation<D>& sim() const { return sim_; }
   [[nodiscard]] const mesh::Mesh<D>& mesh() const { return mesh_; }
   [[nodiscard]] const ImplicitTotals& totals() const { return totals_; }
+  /// The last Newton solve: status and residual history (tests print its convergence).
+  [[nodiscard]] const NewtonResult& last_newton() const { return last_newton_; }
   /// The nodal displacement of the last step (node-major; the whole displacement in a single-step
   /// static analysis, which starts from the undeformed mesh).
   [[nodiscard]] const Eigen::VectorXd& last_nodal_increment() const { return stepper_->last_increment(); }
@@ -144,6 +146,7 @@ class ImplicitMpmSolver {
       sub = std::min(sub, h - done);
       stepper_->set_gravity(gravity_at(sim_.time + done + sub));  // at the end of the sub-step
       StepReport report = stepper_->step(sim_.particles, state_, sub);
+      last_newton_ = report.newton;
       const int iterations = report.newton.iterations();
       totals_.assembly_seconds += report.assembly_seconds;
       totals_.newton_iterations += iterations;
@@ -329,6 +332,7 @@ class ImplicitMpmSolver {
   ImplicitTotals totals_;
   HistoryMarks marks_;
   std::vector<Index> probe_nodes_;  // output.node_probes
+  NewtonResult last_newton_;        // of the last Newton solve (its residual history)
   StepSizeControl step_size_;
 };
 
