@@ -172,11 +172,17 @@ void SpecReader::read_graded_disk(const Object& s, BodySpec& out) const {
     return;
   }
   const double ring_step = *core / std::floor(out.core_divisions / (2 * 3.141592653589793));
-  if ((out.radius - *core) / ring_step >= 1.0 / (out.layer_growth - 1.0))
-    s.optional("layer_growth")
-        .fail(
-            "a growth f > 1 small enough that layers of thickness dR / f^k reach radius: "
-            "(radius - core_radius) / dR < 1 / (f - 1)");
+  const std::string expected =
+      "a growth f > 1 small enough that layers of thickness dR / f^k reach radius: "
+      "(radius - core_radius) / dR < 1 / (f - 1)";
+  if ((out.radius - *core) / ring_step >= 1.0 / (out.layer_growth - 1.0)) {
+    const Value growth = s.optional("layer_growth");
+    if (growth.present())
+      growth.fail(expected);
+    else  // the default does not fit these radii: say so rather than "got missing"
+      issues_.add(growth.path(), "missing (the default " + format_number(out.layer_growth) + ")",
+                  expected + ": give one");
+  }
 }
 
 /// Aulisa & Capodaglio's graded beam (Appendix A, the code's variant; extraction §10.2): the box
