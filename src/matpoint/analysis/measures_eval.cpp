@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace matpoint {
@@ -205,6 +207,13 @@ FreeVibration free_vibration(const Spec& spec, const History& h) {
   return out;
 }
 
+/// The index of a solver column of history.csv (implicit runs' Newton and node-probe columns).
+std::optional<std::size_t> solver_column(const History& h, const std::string& name) {
+  const auto it = std::find(h.solver_columns.begin(), h.solver_columns.end(), name);
+  if (it == h.solver_columns.end()) return std::nullopt;
+  return static_cast<std::size_t>(it - h.solver_columns.begin());
+}
+
 /// The block on a rigid incline (examples/incline-friction): gravity (g sin theta, -g cos theta).
 double sliding_block_error(const Spec& spec, const History& h) {
   if (h.samples.size() < 2) return kNaN;
@@ -248,19 +257,14 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
   if (name == "rolling_disk_mean_relative_error") return rolling_disk_mean_relative_error(spec, history);
   if (name == "node_probe_final_uy") {  // the first output.node_probes node, last row (implicit runs)
     if (spec.output.node_probes.empty() || history.samples.empty()) return kNaN;
-    const auto& columns = history.solver_columns;
-    const auto it =
-        std::find(columns.begin(), columns.end(), "node_" + spec.output.node_probes[0].name + "_uy");
-    if (it == columns.end()) return kNaN;
-    return history.samples.back().solver.at(static_cast<std::size_t>(it - columns.begin()));
+    const auto column = solver_column(history, "node_" + spec.output.node_probes[0].name + "_uy");
+    return column ? history.samples.back().solver.at(*column) : kNaN;
   }
   if (name == "implicit_step_cuts") {  // the sum of history.csv's step_cuts column (implicit runs)
-    const auto& columns = history.solver_columns;
-    const auto it = std::find(columns.begin(), columns.end(), "step_cuts");
-    if (it == columns.end()) return kNaN;
-    const auto column = static_cast<std::size_t>(it - columns.begin());
+    const auto column = solver_column(history, "step_cuts");
+    if (!column) return kNaN;
     double cuts = 0.0;
-    for (const auto& s : history.samples) cuts += s.solver.at(column);
+    for (const auto& s : history.samples) cuts += s.solver.at(*column);
     return cuts;
   }
   if (name == "free_vibration_period") return free_vibration(spec, history).period;

@@ -19,6 +19,7 @@
 #include <variant>
 #include <vector>
 
+#include "matpoint/analysis/probes.hpp"
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_stepper.hpp"
@@ -118,7 +119,9 @@ class ImplicitMpmSolver {
     stepper_.emplace(mesh_, neo_hookean_materials(sim_), options, std::move(dirichlet), std::move(receding));
     stepper_->initialize(sim_.particles, state_);
     previous_x_ = sim_.particles.x;
-    for (const ProbeSpec& probe : spec.output.node_probes) probe_nodes_.push_back(nearest_node(probe));
+    // output.node_probes: the node nearest each position (ties: the lowest index), as particle probes
+    for (long node : probe_particle_ids<D>(mesh_.nodes, spec.output.node_probes))
+      probe_nodes_.push_back(static_cast<Index>(node));
   }
   ImplicitMpmSolver(const ImplicitMpmSolver&) = delete;
   ImplicitMpmSolver& operator=(const ImplicitMpmSolver&) = delete;
@@ -144,7 +147,8 @@ class ImplicitMpmSolver {
     int cuts = 0, most_iterations = 0;
     while (done < h * (1 - 1e-12)) {
       sub = std::min(sub, h - done);
-      stepper_->set_gravity(gravity_at(sim_.time + done + sub));  // at the end of the sub-step
+      const Vec<D> gravity = gravity_at(sim_.time + done + sub);  // at the end of the sub-step
+      stepper_->set_gravity(gravity);
       StepReport report = stepper_->step(sim_.particles, state_, sub);
       last_newton_ = report.newton;
       const int iterations = report.newton.iterations();
@@ -159,7 +163,7 @@ class ImplicitMpmSolver {
         continue;
       }
       most_iterations = std::max(most_iterations, iterations);
-      account_work(sub, gravity_at(sim_.time + done + sub));
+      account_work(sub, gravity);
       done += sub;
     }
     ++sim_.step;
@@ -277,18 +281,6 @@ class ImplicitMpmSolver {
     for (const Material& m : sim.materials)
       out.push_back(std::get<NeoHookean>(m));  // the reader allows no other
     return out;
-  }
-
-  /// The mesh node nearest the probe's position (ties: the lowest index).
-  [[nodiscard]] Index nearest_node(const ProbeSpec& probe) const {
-    Vec<D> x;
-    for (int a = 0; a < D; ++a) x[a] = probe.position[a];
-    Index best = 0;
-    for (Index n = 1; n < mesh_.node_count(); ++n)
-      if ((mesh_.nodes[static_cast<std::size_t>(n)] - x).squaredNorm() <
-          (mesh_.nodes[static_cast<std::size_t>(best)] - x).squaredNorm())
-        best = n;
-    return best;
   }
 
   /// loads.gravity times loads.gravity_scale at time t.
