@@ -105,9 +105,13 @@ class ImplicitMpmSolver {
       const VelocityConditionSpec& c = spec.conditions[k];
       for (Index n : boundary_nodes(mesh_, c, k)) {
         on_condition[static_cast<std::size_t>(n)] = 1;
-        for (int a = 0; a < D; ++a)
-          if (c.kind == ConditionKind::Fixed || a == c.normal_axis)
+        for (int a = 0; a < D; ++a) {
+          const bool moving = c.kind == ConditionKind::Velocity && c.velocity[static_cast<std::size_t>(a)];
+          if (c.kind == ConditionKind::Fixed || (c.kind == ConditionKind::Slip && a == c.normal_axis) ||
+              moving)
             dirichlet[static_cast<std::size_t>(n * D + a)] = 1;
+          if (moving) moving_dofs_.push_back({n * D + a, &*c.velocity[static_cast<std::size_t>(a)]});
+        }
       }
       if (c.receding > 0)
         if (const auto faces = mesh_.boundary_faces.find(c.boundary); faces != mesh_.boundary_faces.end())
@@ -116,7 +120,7 @@ class ImplicitMpmSolver {
     auto options = stepper_options<D>(spec);
     options.gravity = gravity_at(0.0);
     options.not_fully_active = on_condition;  // A13 (b): boundary nodes count as not fully active
-    stepper_.emplace(mesh_, neo_hookean_materials(sim_), options, std::move(dirichlet), std::move(receding));
+    stepper_.emplace(mesh_, implicit_materials(sim_), options, std::move(dirichlet), std::move(receding));
     stepper_->initialize(sim_.particles, state_);
     previous_x_ = sim_.particles.x;
     // output.node_probes: the node nearest each position (ties: the lowest index), as particle probes
@@ -149,6 +153,7 @@ class ImplicitMpmSolver {
       sub = std::min(sub, h - done);
       const Vec<D> gravity = gravity_at(sim_.time + done + sub);  // at the end of the sub-step
       stepper_->set_gravity(gravity);
+      stepper_->set_prescribed(prescribed_increments(sim_.time + done, sim_.time + done + sub));
       StepReport report = stepper_->step(sim_.particles, state_, sub);
       last_newton_ = report.newton;
       const int iterations = report.newton.iterations();
@@ -164,6 +169,7 @@ class ImplicitMpmSolver {
       }
       most_iterations = std::max(most_iterations, iterations);
       account_work(sub, gravity);
+      sim_.external_work += report.boundary_work;
       done += sub;
     }
     ++sim_.step;
@@ -216,6 +222,10 @@ class ImplicitMpmSolver {
     c.solver_state["history_marks"] = {static_cast<double>(marks_.newton_iterations),
                                        static_cast<double>(marks_.step_cuts), marks_.newton_residual};
     c.solver_state["dt"] = {step_size_.current()};
+    std::vector<double> reactions;  // (dof, force) pairs of the moving conditions
+    for (const auto& [dof, force] : stepper_->reactions())
+      reactions.insert(reactions.end(), {static_cast<double>(dof), force});
+    c.solver_state["boundary_reactions"] = std::move(reactions);
   }
   /// Throws InputError when the checkpoint is not an implicit run's of these particles.
   void restore(const RunCounters& c) {
@@ -242,6 +252,11 @@ class ImplicitMpmSolver {
                static_cast<long>(totals[3]), totals[4]};
     marks_ = {static_cast<long>(marks[0]), static_cast<long>(marks[1]), marks[2]};
     step_size_.restore(get("dt", 1)[0]);
+    std::map<Index, double> reactions;
+    if (const auto it = c.solver_state.find("boundary_reactions"); it != c.solver_state.end())
+      for (std::size_t k = 0; k + 1 < it->second.size(); k += 2)
+        reactions[static_cast<Index>(it->second[k])] = it->second[k + 1];
+    stepper_->set_reactions(std::move(reactions));
     previous_x_ = sim_.particles.x;
   }
 
@@ -276,10 +291,9 @@ class ImplicitMpmSolver {
     spec.conditions.clear();  // mesh-boundary conditions: the stepper's, not the explicit grid's
     return spec;
   }
-  static std::vector<NeoHookean> neo_hookean_materials(const Simulation<D>& sim) {
-    std::vector<NeoHookean> out;
-    for (const Material& m : sim.materials)
-      out.push_back(std::get<NeoHookean>(m));  // the reader allows no other
+  static std::vector<ImplicitMaterial> implicit_materials(const Simulation<D>& sim) {
+    std::vector<ImplicitMaterial> out;
+    for (const Material& m : sim.materials) out.emplace_back(m);  // the reader allows no other models
     return out;
   }
 
@@ -289,6 +303,16 @@ class ImplicitMpmSolver {
     const double scale = spec_.loads.gravity_scale(t);
     for (int a = 0; a < D; ++a) g[a] = scale * spec_.loads.gravity[a];
     return g;
+  }
+
+  /// The displacement of each "velocity" boundary dof over [t0, t1]: the integral of its velocity
+  /// (exact for a piecewise-linear table). A later condition on the same dof overrides an earlier one.
+  [[nodiscard]] std::vector<std::pair<Index, double>> prescribed_increments(double t0, double t1) const {
+    std::vector<std::pair<Index, double>> out;
+    out.reserve(moving_dofs_.size());
+    for (const auto& [dof, velocity] : moving_dofs_)
+      out.emplace_back(dof, velocity->integral(t1) - velocity->integral(t0));
+    return out;
   }
 
   /// Gravity's work sum m g . dx and impulse M g h over a completed sub-step (the energy balance).
@@ -318,13 +342,14 @@ class ImplicitMpmSolver {
   const Spec& spec_;
   Simulation<D> sim_;
   mesh::Mesh<D> mesh_;
-  std::optional<ParticleNewmarkStepper<E, NeoHookean>> stepper_;
+  std::optional<ParticleNewmarkStepper<E, ImplicitMaterial>> stepper_;
   ImplicitParticleState<D> state_;
   std::vector<Vec<D>> previous_x_;
   ImplicitTotals totals_;
   HistoryMarks marks_;
-  std::vector<Index> probe_nodes_;  // output.node_probes
-  NewtonResult last_newton_;        // of the last Newton solve (its residual history)
+  std::vector<Index> probe_nodes_;                                  // output.node_probes
+  std::vector<std::pair<Index, const TimeFunction*>> moving_dofs_;  // "velocity" conditions (spec_'s)
+  NewtonResult last_newton_;  // of the last Newton solve (its residual history)
   StepSizeControl step_size_;
 };
 

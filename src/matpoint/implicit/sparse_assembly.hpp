@@ -33,9 +33,10 @@ class SparseAssembly {
 
   /// kernel(k, dofs, r, K) fills block k's residual r (size n) and, when K is not null, its
   /// Jacobian K (row-major n x n), both zeroed before the call; dofs are its global dofs. R gets
-  /// the global residual; K (if given) the global Jacobian, with the pattern of build().
+  /// the global residual; K (if given) the global Jacobian, with the pattern of build(). With
+  /// `constrain` false the Dirichlet rows keep their values (the reactions).
   template <class Kernel>
-  void assemble(Kernel&& kernel, Eigen::VectorXd& R, SparseMatrix* K) const;
+  void assemble(Kernel&& kernel, Eigen::VectorXd& R, SparseMatrix* K, bool constrain = true) const;
 
   [[nodiscard]] Index dof_count() const { return dofs_; }
   [[nodiscard]] Index block_count() const { return static_cast<Index>(offsets_.size()) - 1; }
@@ -66,7 +67,7 @@ class SparseAssembly {
 };
 
 template <class Kernel>
-void SparseAssembly::assemble(Kernel&& kernel, Eigen::VectorXd& R, SparseMatrix* K) const {
+void SparseAssembly::assemble(Kernel&& kernel, Eigen::VectorXd& R, SparseMatrix* K, bool constrain) const {
   R.setZero(dofs_);
   if (K != nullptr) {
     // K keeps its storage while it has this pattern (every Newton iteration of a step).
@@ -102,7 +103,7 @@ void SparseAssembly::assemble(Kernel&& kernel, Eigen::VectorXd& R, SparseMatrix*
       }
     }
   }
-  apply_dirichlet(R, K);
+  if (constrain) apply_dirichlet(R, K);
 }
 
 }  // namespace matpoint::implicit

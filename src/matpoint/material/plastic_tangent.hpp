@@ -29,15 +29,18 @@ struct PlasticResponse {
   YieldState state = YieldState::Elastic;
 };
 
-/// tau(F) from the stored state (not advanced) and its derivative. F: 3 x 3 (embed3 for 2-D).
+/// tau(F) from the stored state (not advanced) and, unless `derivative` is false, its derivative.
+/// F: 3 x 3 (embed3 for 2-D).
 template <class Yield>
 [[nodiscard]] PlasticResponse hencky_plastic_response(const HenckyElasticity& elastic, const Yield& yield,
-                                                      const Mat3& F, const double* state) {
+                                                      const Mat3& F, const double* state,
+                                                      bool derivative = true) {
   const Mat3 Cp_inv = plastic_metric(state);
   const Spectral trial = hencky_strain(F * Cp_inv * F.transpose());
   const PrincipalReturn r =
       yield.return_map(elastic, elastic.stress(trial.eps), state[kEquivalentPlasticStrain]);
   PlasticResponse out{from_principal(r.tau, trial.axes), Tensor4::Zero(), r.state};
+  if (!derivative) return out;
 
   const Mat3& Q = trial.axes;
   const Vec3 x = (2.0 * trial.eps).array().exp().matrix();  // eigenvalues of b

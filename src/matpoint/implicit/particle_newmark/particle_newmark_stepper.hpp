@@ -73,6 +73,7 @@ struct StepReport {
   Index active_elements = 0;
   Index lost_particles = 0;       // particles outside the mesh (the step is refused, A22)
   double assembly_seconds = 0.0;  // residual + Jacobian assembly (the linear solver keeps its own times)
+  double boundary_work = 0.0;     // work of the moving Dirichlet conditions on the body (trapezoidal)
   [[nodiscard]] bool ok() const { return lost_particles == 0 && newton.converged(); }
 };
 
@@ -111,6 +112,14 @@ class ParticleNewmarkStepper {
   [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
   /// The body force per unit mass of the next steps (loads.gravity_scale changes it in time).
   void set_gravity(const Vec<D>& gravity) { options_.gravity = gravity; }
+  /// u~ of Dirichlet dofs that move in the next step (dof, displacement over the step); the other
+  /// Dirichlet dofs stay at 0.
+  void set_prescribed(std::vector<std::pair<Index, double>> prescribed) {
+    prescribed_ = std::move(prescribed);
+  }
+  /// The last converged reaction of each moving dof (for the boundary work; a checkpoint keeps it).
+  [[nodiscard]] const std::map<Index, double>& reactions() const { return reaction_; }
+  void set_reactions(std::map<Index, double> reactions) { reaction_ = std::move(reactions); }
 
  private:
   bool locate(const ParticleSet<D>& particles, ImplicitParticleState<D>& state, StepReport& report) const;
@@ -118,6 +127,28 @@ class ParticleNewmarkStepper {
                         const NewmarkCoefficients& c);
   void commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state, const Eigen::VectorXd& u,
               double dt) const;
+
+  /// The work of the moving conditions over the converged step, sum_d (f_d^n + f_d^{n+1}) / 2 u~_d with
+  /// f_d the reaction (the unconstrained residual of dof d; 0 before the first step, a body at rest
+  /// and unloaded there); remembers f^{n+1}.
+  double boundary_work(const Eigen::VectorXd& u) {
+    if (prescribed_.empty()) return 0.0;
+    Eigen::VectorXd reaction;
+    system_.assemble(u, reaction, nullptr, false);
+    double work = 0.0;
+    for (const auto& [dof, value] : prescribed_) {
+      double& previous = reaction_[dof];
+      work += 0.5 * (previous + reaction[dof]) * value;
+      previous = reaction[dof];
+    }
+    return work;
+  }
+
+  /// Particle p's material history (null when no material has one).
+  static const double* history(const ParticleSet<D>& particles, std::size_t p) {
+    return particles.state_stride > 0 ? &particles.state[p * static_cast<std::size_t>(particles.state_stride)]
+                                      : nullptr;
+  }
 
   /// Iaconeta eqs. (38)-(41): the nodal v~_I = sum_p N_I m_p v_p / m_I and a~_I likewise.
   void project_to_nodes(const ParticleSet<D>& particles, const ImplicitParticleState<D>& state);
@@ -140,6 +171,8 @@ class ParticleNewmarkStepper {
   ParticleNewmarkSystem<E, Material> system_;
   std::vector<Vec<D>> node_velocity_, node_acceleration_;  // v~_I, a~_I (grid Newmark only)
   Eigen::VectorXd last_increment_;
+  std::vector<std::pair<Index, double>> prescribed_;
+  std::map<Index, double> reaction_;  // the last converged reaction of each moving dof
 };
 
 template <class E, class Material>
@@ -224,7 +257,7 @@ void ParticleNewmarkStepper<E, Material>::build_quadrature(const ParticleSet<D>&
         if (any_face) bits = receding_switches<E>(x, element_receding_[k], particles.v[p]);
       q_.add(static_cast<Index>(p), state.xi[p], x, particles.mass[p], particles.volume0[p],
              particles.material[p], particles.F[p],
-             known_acceleration(particles, state, p, c) - options_.gravity, bits);
+             known_acceleration(particles, state, p, c) - options_.gravity, bits, history(particles, p));
     }
     q_.close_block();
   }
@@ -269,7 +302,9 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   data.options.small_strain = options_.small_strain;
   system_.setup(std::move(data));
 
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(system_.dof_count());  // u~ = 0 (§6)
+  // u~ = 0 (§6) but at moving Dirichlet dofs, which keep their value (identity rows, zero residual).
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(system_.dof_count());
+  for (const auto& [dof, value] : prescribed_) u[dof] = value;
   const auto timed_assembly = [&](const Eigen::VectorXd& x, Eigen::VectorXd& R, SparseMatrix* K) {
     const auto t0 = std::chrono::steady_clock::now();
     const bool ok = system_.assemble(x, R, K);
@@ -279,6 +314,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   report.newton =
       newton_solve(timed_assembly, system_.assembly().pattern_version(), *solver_, u, options_.newton);
   if (report.newton.converged()) {
+    report.boundary_work = boundary_work(u);
     commit(particles, state, u, dt);
     last_increment_ = std::move(u);
   }
@@ -331,10 +367,12 @@ void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, Impl
       if constexpr (D == 2) particles.stress_zz[p] = m.lambda * eps.trace();
       continue;
     }
-    if constexpr (D == 2)
-      particles.stress[p] = m.template stress<D>(particles.F[p], particles.stress_zz[p]);
-    else
-      particles.stress[p] = m.template stress<D>(particles.F[p]);
+    double sigma_zz = 0.0;
+    double* history = particles.state_stride > 0
+                          ? &particles.state[p * static_cast<std::size_t>(particles.state_stride)]
+                          : nullptr;
+    particles.stress[p] = updated_stress_of<D>(m, particles.F[p], history, sigma_zz);
+    if constexpr (D == 2) particles.stress_zz[p] = sigma_zz;
   }
 }
 

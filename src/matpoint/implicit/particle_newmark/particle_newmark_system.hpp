@@ -48,8 +48,9 @@ class ParticleNewmarkSystem {
   /// set); the pattern version, hence the solver's symbolic analysis, survives otherwise.
   void setup(StepData data);
 
-  /// R(u~) and, when K is not null, the Jacobian; Dirichlet rows as identity with zero residual.
-  bool assemble(const Eigen::VectorXd& u, Eigen::VectorXd& R, SparseMatrix* K) const;
+  /// R(u~) and, when K is not null, the Jacobian; Dirichlet rows as identity with zero residual
+  /// unless `constrain` is false (then R holds the reactions there: the force the condition exerts).
+  bool assemble(const Eigen::VectorXd& u, Eigen::VectorXd& R, SparseMatrix* K, bool constrain = true) const;
 
   [[nodiscard]] const SparseAssembly& assembly() const { return assembly_; }
   [[nodiscard]] Index dof_count() const { return assembly_.dof_count(); }
@@ -147,7 +148,7 @@ void ParticleNewmarkSystem<E, Material>::element_residual(Index k, const double*
 
 template <class E, class Material>
 bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eigen::VectorXd& R,
-                                                  SparseMatrix* K) const {
+                                                  SparseMatrix* K, bool constrain) const {
   assembly_.assemble(
       [&](Index b, std::span<const Index> dofs, double* r, double* k) {
         if (b < active_) {
@@ -165,7 +166,7 @@ bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eige
         r[0] = m * u[dofs[0]];
         if (k != nullptr) k[0] = m;
       },
-      R, K);
+      R, K, constrain);
   return R.allFinite();
 }
 

@@ -48,21 +48,24 @@ struct ParticleQuadrature {
   std::vector<Mat<kDim>> F_old;         // F_p^n
   std::vector<Vec<kDim>> known;         // eq. (21) without u~ minus b_p: known(v^n, a^n) - b_p
   std::vector<std::uint32_t> receding;  // bit f: the correction of face f is on (A4)
+  std::vector<const double*> state;     // the material history of the step start (null: none)
 
   [[nodiscard]] Index blocks() const { return static_cast<Index>(begin.size()) - 1; }
   void clear() {
     begin.assign(1, 0);
     particle.clear(), N.clear(), G.clear(), mass.clear(), volume0.clear(), material.clear();
-    F_old.clear(), known.clear(), receding.clear();
+    F_old.clear(), known.clear(), receding.clear(), state.clear();
   }
   /// Appends one particle to the current (last) block.
   void add(Index p, const Vec<kDim>& xi, const NodeMatrix<E>& reference_nodes, double m, double v0, int mat,
-           const Mat<kDim>& F, const Vec<kDim>& known_minus_b, std::uint32_t receding_bits) {
+           const Mat<kDim>& F, const Vec<kDim>& known_minus_b, std::uint32_t receding_bits,
+           const double* history = nullptr) {
     particle.push_back(p);
     N.push_back(E::values(xi));
     G.push_back(physical_gradients<E>(reference_nodes, xi));
     mass.push_back(m), volume0.push_back(v0), material.push_back(mat);
     F_old.push_back(F), known.push_back(known_minus_b), receding.push_back(receding_bits);
+    state.push_back(history);
   }
   /// Closes the current block (its particles are those added since the last call).
   void close_block() { begin.push_back(static_cast<Index>(particle.size())); }

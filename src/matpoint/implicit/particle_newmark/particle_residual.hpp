@@ -16,6 +16,7 @@
 #include <array>
 
 #include "matpoint/core/dual.hpp"
+#include "matpoint/implicit/implicit_material.hpp"
 #include "matpoint/implicit/particle_newmark/particle_quadrature.hpp"
 #include "matpoint/implicit/particle_newmark/receding_contact.hpp"
 
@@ -85,7 +86,7 @@ void add_particle_residual(const ParticleQuadrature<E>& q, Index first, Index la
       add_inertia_and_stress(q, p, options, u, MatS(q.volume0[static_cast<std::size_t>(p)] * sigma), r);
       continue;
     }
-    const MatS tau = material.template kirchhoff_stress<S, D>(F);
+    const MatS tau = kirchhoff_stress_of<S, D>(material, F, q.state[static_cast<std::size_t>(p)]);
     MatS H_gradient = H;
     if (switches != 0 && !options.receding_in_gradient) {
       H_gradient = MatS::Identity();

@@ -28,7 +28,7 @@ void SpecReader::read_conditions(const Value& list) {
     const bool wall = item.get().is_object() && item.get().value("type", json()) == "moving_wall";
     if (spec_.mesh.enabled)
       spec_.conditions.push_back(
-          read_mesh_condition(Object(item, {"type", "boundary", "normal", "receding"})));
+          read_mesh_condition(Object(item, {"type", "boundary", "normal", "receding", "velocity"})));
     else if (wall)
       spec_.conditions.push_back(read_moving_wall(
           Object(item, {"type", "axis", "position", "material", "velocity", "depth", "stretch_about"})));
@@ -59,17 +59,28 @@ VelocityConditionSpec SpecReader::read_moving_wall(const Object& c) const {
   return out;
 }
 
-/// A condition of an implicit run: "fixed" (every component 0) or "slip" (the normal component 0)
-/// on the nodes of a named mesh boundary, with the receding-contact constant C_c in [0, 1] of its
-/// faces (Aulisa & Capodaglio §5, eq. (47) as corrected in extraction A3).
+/// A condition of an implicit run: "fixed" (every component 0), "slip" (the normal component 0) or
+/// "velocity" (the listed components move at the prescribed velocity) on the nodes of a named mesh boundary,
+/// with the receding-contact constant C_c in [0, 1] of its faces (Aulisa & Capodaglio §5, eq. (47) as
+/// corrected in extraction A3).
 VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
   VelocityConditionSpec out;
   if (!c.valid()) return out;
   const Value type = c.required("type");
   const auto kind = type.choice(kConditionKinds);
-  if (kind && *kind != ConditionKind::Fixed && *kind != ConditionKind::Slip)
-    type.fail("\"fixed\" or \"slip\" (an implicit run's conditions hold displacements on mesh boundaries)");
+  if (kind && *kind != ConditionKind::Fixed && *kind != ConditionKind::Slip &&
+      *kind != ConditionKind::Velocity)
+    type.fail("\"fixed\", \"slip\" or \"velocity\" (an implicit run's conditions act on mesh boundaries)");
   set_if(out.kind, kind);
+  const Value velocity = c.optional("velocity");
+  if (out.kind == ConditionKind::Velocity) {
+    if (velocity.present())
+      read_prescribed_velocity(velocity, out);
+    else
+      c.missing("velocity", prescribed_velocity_text());
+  } else if (velocity.present()) {
+    velocity.fail("no velocity unless type is \"velocity\"");
+  }
   const auto boundary = c.required("boundary").string();
   if (boundary) {
     out.boundary = *boundary;
@@ -89,6 +100,9 @@ VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
     c.optional("normal").fail("no normal unless type is \"slip\"");
   }
   set_if(out.receding, c.optional("receding").number(kUnitInterval));
+  if (out.kind == ConditionKind::Velocity && c.has("receding"))
+    c.optional("receding")
+        .fail("no receding on a \"velocity\" boundary (the correction is for walls at rest)");
   return out;
 }
 

@@ -91,14 +91,6 @@ void SpecReader::read_implicit(const Object& s) {
     if (s.has(key))
       s.optional(key).fail(std::string("no ") + key + " with solver.type \"" + type +
                            "\" (an explicit solver's key)");
-  for (std::size_t k = 0; k < spec_.materials.size(); ++k) {
-    const MaterialSpec& material = spec_.materials[k];
-    if (material.model != MaterialModel::NeoHookean || material.volumetric != NeoHookeanVolumetric::LogJ)
-      issues_.add(
-          "materials[" + std::to_string(k) + "].model", "\"" + material.name + "\"",
-          "model \"neo_hookean\" with volumetric \"log_j\" under solver.type \"" + type +
-              "\" (Aulisa & Capodaglio eq. (12), Iaconeta 2017 §7.1; the other models are not yet implicit)");
-  }
   set_if(out.end_time, s.required("end_time").number(kPositive));
   set_if(out.max_steps, s.optional("max_steps").integer(0));
   read_energy_guard(s.optional("max_energy_growth"), out);
@@ -121,6 +113,7 @@ void SpecReader::read_implicit(const Object& s) {
   if (kinematics && *kinematics != "finite" && *kinematics != "small")
     o.optional("kinematics").fail("\"finite\" or \"small\" (geometrically linear with Hooke's law)");
   if (kinematics) m.small_strain = *kinematics == "small";
+  check_implicit_materials(type, m.small_strain);
   read_implicit_time_step(s, o, out);
   set_if(m.beta, o.optional("beta").number({0, 0.5, true, false}));
   set_if(m.gamma, o.optional("gamma").number({0, 1, false, false}));
@@ -347,6 +340,31 @@ void SpecReader::check_step_count() {
               "a run of at most 1e9 time steps without solver.max_steps; this one needs about " +
                   format_number(std::round(steps)) + " steps of dt = " + format_number(dt) +
                   " (check the units of end_time, cell_size, E and density, or set solver.max_steps)");
+}
+
+/// The models an implicit run takes: neo_hookean with volumetric "log_j" (Aulisa & Capodaglio eq.
+/// (12), Iaconeta 2017 §7.1) and, with finite kinematics, the Hencky plastic models (Iaconeta 2017
+/// §7.2) through their consistent tangents (implicit/implicit_material.hpp).
+void SpecReader::check_implicit_materials(const std::string& type, bool small_strain) {
+  for (std::size_t k = 0; k < spec_.materials.size(); ++k) {
+    const MaterialSpec& material = spec_.materials[k];
+    const bool plastic = material.model == MaterialModel::MohrCoulomb ||
+                         material.model == MaterialModel::DruckerPrager ||
+                         material.model == MaterialModel::VonMises;
+    const bool neo_hookean =
+        material.model == MaterialModel::NeoHookean && material.volumetric == NeoHookeanVolumetric::LogJ;
+    if (plastic && small_strain)
+      issues_.add("materials[" + std::to_string(k) + "].model", "\"" + material.name + "\"",
+                  "an elastic model (neo_hookean) under solver.implicit.kinematics \"small\" (Hooke's law on "
+                  "the elastic constants, a check against linear theory, has no plasticity)");
+    else if (!plastic && !neo_hookean)
+      issues_.add(
+          "materials[" + std::to_string(k) + "].model", "\"" + material.name + "\"",
+          "model \"neo_hookean\" with volumetric \"log_j\" (Aulisa & Capodaglio eq. (12), Iaconeta "
+          "2017 §7.1) or \"mohr_coulomb\", \"drucker_prager\", \"von_mises\" (Iaconeta 2017 §7.2) under "
+          "solver.type \"" +
+              type + "\"");
+  }
 }
 
 }  // namespace matpoint::input_detail

@@ -147,11 +147,13 @@ class SpecReader {
 
   void read_solver(const Object& s);
 
-  /// solver.max_energy_growth: a number > 0 (run/energy_guard.hpp), or "off".
   void read_implicit(const Object& s);
+  /// The material models an implicit run takes (neo_hookean log_j; the plastic ones unless small strain).
+  void check_implicit_materials(const std::string& type, bool small_strain);
 
   static void read_soft_stiffness(const Object& o, ImplicitSpec& m);
 
+  /// solver.max_energy_growth: a number > 0 (run/energy_guard.hpp), or "off".
   static void read_energy_guard(const Value& growth, SolverSpec& out);
 
   /// solver.constrain_old_velocity: Gong 2015's wall treatment (extraction A24): the velocity
