@@ -39,15 +39,16 @@ struct Tally {
 
 /// Checks d tau / d F against central differences at random F for one model; returns the tally.
 template <class Yield>
-Tally check_against_differences(const Yield& yield, double strain, bool plane, unsigned seed) {
+Tally check_against_differences(const Yield& yield, double strain, bool plane, unsigned seed,
+                                double dt = 0.0) {
   std::mt19937 rng(seed);
   Tally tally;
   for (int sample = 0; sample < 400; ++sample) {
     // A plastic history: one update from the virgin state at F0, then the response at F.
     std::vector<double> state(kPlasticStateSize, 0.0);
-    (void)hencky_plastic_update(kSoil, yield, random_F(rng, strain, plane), state.data());
+    (void)hencky_plastic_update(kSoil, yield, random_F(rng, strain, plane), state.data(), dt);
     const Mat3 F = random_F(rng, strain, plane);
-    const PlasticResponse r = hencky_plastic_response(kSoil, yield, F, state.data());
+    const PlasticResponse r = hencky_plastic_response(kSoil, yield, F, state.data(), true, dt);
     const double h = 1e-7;
     double worst = 0.0;
     bool kink = false;
@@ -56,8 +57,8 @@ Tally check_against_differences(const Yield& yield, double strain, bool plane, u
         if (plane && (k == 2 || l == 2)) continue;
         Mat3 Fp = F, Fm = F;
         Fp(k, l) += h, Fm(k, l) -= h;
-        const PlasticResponse p = hencky_plastic_response(kSoil, yield, Fp, state.data());
-        const PlasticResponse m = hencky_plastic_response(kSoil, yield, Fm, state.data());
+        const PlasticResponse p = hencky_plastic_response(kSoil, yield, Fp, state.data(), true, dt);
+        const PlasticResponse m = hencky_plastic_response(kSoil, yield, Fm, state.data(), true, dt);
         kink = kink || p.state != r.state || m.state != r.state;
         const Mat3 difference = (p.tau - m.tau) / (2 * h);
         for (int i = 0; i < 3; ++i)
@@ -84,6 +85,17 @@ TEST(PlasticTangent, MohrCoulombEveryRegionMatchesDifferences) {
   }
 }
 
+TEST(PlasticTangent, MohrCoulombWithTensionCutoffMatchesDifferences) {
+  MohrCoulombYield yield{5e3, 25 * kDeg, 5 * kDeg};
+  yield.tension_cutoff = 3e3;
+  for (const bool plane : {false, true}) {
+    const Tally t = check_against_differences(yield, 0.02, plane, 23);
+    // One and two active planes (pyramid, cut-off, and their edges); three (the cut-off's corner,
+    // tau = sigma_t (1, 1, 1), tangent 0) is rare at these strains.
+    for (int s = 0; s < 3; ++s) EXPECT_GT(t.checked[static_cast<std::size_t>(s)], 0) << "state " << s;
+  }
+}
+
 TEST(PlasticTangent, DruckerPragerConeAndApexMatchDifferences) {
   for (const bool plane : {false, true}) {
     const Tally t = check_against_differences(
@@ -100,6 +112,16 @@ TEST(PlasticTangent, VonMisesMatchesDifferences) {
     const Tally t = check_against_differences(VonMisesYield{2e4, 3e5}, 0.02, plane, 13);
     EXPECT_GT(t.checked[0], 0);
     EXPECT_GT(t.checked[1], 0);
+  }
+}
+
+TEST(PlasticTangent, JohnsonCookMatchesDifferences) {
+  // sigma_f = (2e4 + 1e5 eps_p^0.5)(1 + 0.05 ln(rate)), rate = dgamma / dt: the strain increments here
+  // (up to 2 %) over dt = 1e-3 give rates of 1-20 /s, above the reference rate 1 /s.
+  for (const bool plane : {false, true}) {
+    const Tally t =
+        check_against_differences(VonMisesYield{2e4, 0.0, 1e5, 0.5, 0.05, 1.0}, 0.02, plane, 29, 1e-3);
+    EXPECT_GT(t.checked[1], 100);
   }
 }
 

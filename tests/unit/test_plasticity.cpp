@@ -17,6 +17,7 @@
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/input.hpp"
 #include "matpoint/material/material.hpp"
+#include "matpoint/material/multisurface_return.hpp"
 
 namespace {
 
@@ -83,7 +84,8 @@ TEST(Plasticity, MohrCoulombApexAndUnconfinedStrengthAreThePapers) {
 /// lateral stretches found each step so that the lateral Kirchhoff stresses vanish (secant
 /// iterations). Returns the axial Kirchhoff stress at each step.
 template <class Model>
-std::vector<double> uniaxial_stress_curve(const Model& model, const std::vector<double>& axial_log_strain) {
+std::vector<double> uniaxial_stress_curve(const Model& model, const std::vector<double>& axial_log_strain,
+                                          double dt = 0.0) {
   std::vector<double> state(kPlasticStateSize, 0.0), out;
   double lateral = 0.0, previous = 0.0;
   for (double e : axial_log_strain) {
@@ -91,8 +93,8 @@ std::vector<double> uniaxial_stress_curve(const Model& model, const std::vector<
     auto lateral_tau = [&](double l, double* axial) {
       trial_state = state;
       const Vec3 stretch(std::exp(e), std::exp(l), std::exp(l));
-      const Mat3 tau =
-          hencky_plastic_update(model.elastic, model.yield, Mat3(stretch.asDiagonal()), trial_state.data());
+      const Mat3 tau = hencky_plastic_update(model.elastic, model.yield, Mat3(stretch.asDiagonal()),
+                                             trial_state.data(), dt);
       if (axial) *axial = tau(0, 0);
       return tau(1, 1);
     };
@@ -141,6 +143,51 @@ TEST(Plasticity, VonMisesUniaxialCurveIsBilinear) {
     const double analytic = e < sy / E ? E * e : sy + E * H / (E + H) * (e - sy / E);
     EXPECT_NEAR(tau[i], analytic, 0.01 * analytic) << "eps = " << e;  // issue bound: 1 %
     EXPECT_NEAR(tau[i], analytic, 1e-7 * analytic) << "eps = " << e;  // exact up to the solve
+  }
+}
+
+// Johnson-Cook (beyond the papers). In uniaxial stress the axial plastic log strain is the
+// equivalent plastic strain, eps_p = eps - tau / E, so without the rate term the curve must satisfy
+// tau = sigma_y + B (eps - tau / E)^n, solved here by bisection; with it, every step must satisfy
+// tau_k = (sigma_y + B eps_p,k^n)(1 + C ln((eps_p,k - eps_p,k-1) / (dt rate_0))) with eps_p from the
+// same elastic relation. Johnson & Cook's OFHC copper constants (1983, Table 1 as usually quoted):
+// A = 90 MPa, B = 292 MPa, n = 0.31, C = 0.025, reference rate 1/s.
+TEST(Plasticity, JohnsonCookUniaxialCurve) {
+  const double E = 117e9, nu = 0.35, A = 90e6, B = 292e6, n = 0.31, C = 0.025;
+  const HenckyElasticity elastic{E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+  std::vector<double> strains;
+  for (int i = 1; i <= 100; ++i) strains.push_back(0.002 * i);  // to 20 %
+  {
+    const VonMises jc{8960, elastic, {A, 0.0, B, n, 0.0, 1.0}};
+    const auto tau = uniaxial_stress_curve(jc, strains);
+    for (std::size_t i = 0; i < strains.size(); ++i) {
+      const double e = strains[i];
+      double low = 0.0, high = E * e;  // tau in [0, E e]; g(tau) = tau - A - B (e - tau/E)^n decreasing root
+      if (high <= A) {
+        EXPECT_NEAR(tau[i], E * e, 1e-9 * E * e);
+        continue;
+      }
+      for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (low + high);
+        (mid - A - B * std::pow(std::max(e - mid / E, 0.0), n) > 0 ? high : low) = mid;
+      }
+      EXPECT_NEAR(tau[i], 0.5 * (low + high), 1e-7 * tau[i]) << "eps = " << e;
+    }
+  }
+  {
+    const double dt = 1e-5, rate = 0.002 / dt;  // 200 /s
+    const VonMises jc{8960, elastic, {A, 0.0, B, n, C, 1.0}};
+    const auto tau = uniaxial_stress_curve(jc, strains, dt);
+    for (std::size_t i = 10; i < strains.size(); ++i) {  // yielded from the 1st step on
+      const double ep = strains[i] - tau[i] / E, ep_old = strains[i - 1] - tau[i - 1] / E;
+      const double expected = (A + B * std::pow(ep, n)) * (1 + C * std::log((ep - ep_old) / dt));
+      EXPECT_NEAR(tau[i], expected, 1e-6 * expected) << "eps = " << strains[i];
+    }
+    // Near steady flow the plastic rate is the imposed one: the stress exceeds the quasi-static curve by
+    // the factor 1 + C ln(200) (to within the elastic share of the strain rate, < 1 %).
+    const VonMises quasi_static{8960, elastic, {A, 0.0, B, n, 0.0, 1.0}};
+    const double ratio = tau.back() / uniaxial_stress_curve(quasi_static, strains).back();
+    EXPECT_NEAR(ratio, 1 + C * std::log(rate), 0.01 * C * std::log(rate));
   }
 }
 
@@ -215,7 +262,8 @@ struct Projection {
   Vec3 tau;
   int active;
 };
-Projection closest_point(const Vec3& trial, double k, double sigma_c, const Mat3& D) {
+Projection closest_point(const Vec3& trial, double k, double sigma_c, const Mat3& D,
+                         double tension_cutoff = INFINITY) {
   std::vector<std::pair<Vec3, double>> planes;  // (normal, offset)
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
@@ -225,6 +273,8 @@ Projection closest_point(const Vec3& trial, double k, double sigma_c, const Mat3
         a[j] = -1;
         planes.emplace_back(a, sigma_c);
       }
+  if (std::isfinite(tension_cutoff))
+    for (int i = 0; i < 3; ++i) planes.emplace_back(Vec3::Unit(i), tension_cutoff);
   auto feasible = [&](const Vec3& s) {
     for (const auto& [a, b] : planes)
       if (a.dot(s) - b > 1e-9 * sigma_c) return false;
@@ -284,6 +334,60 @@ TEST(Plasticity, MohrCoulombRegionsEqualTheClosestPointProjection) {
   }
   for (int region = 0; region < 4; ++region) EXPECT_GT(counts[region], 100) << "region " << region;
   std::printf("elastic, plane, edge, apex trials: %d %d %d %d\n", counts[0], counts[1], counts[2], counts[3]);
+}
+
+// The tension cut-off (beyond the paper): with associated flow the multi-surface return onto the
+// pyramid and the planes tau_A = sigma_t is the closest point of their intersection in the energy norm.
+TEST(Plasticity, MohrCoulombTensionCutoffEqualsTheClosestPointProjection) {
+  const double k = (1 + std::sin(25 * kDeg)) / (1 - std::sin(25 * kDeg));
+  const double sigma_t = 3e3;  // below the apex c cot(phi) = 10.7 kPa
+  MohrCoulombYield yield = kAssociatedMC;
+  yield.tension_cutoff = sigma_t;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-8 * kSigmaC, 3 * kSigmaC), tension(-kSigmaC, 5 * kSigmaC);
+  int counts[4] = {0, 0, 0, 0}, cut = 0;
+  for (int trial_index = 0; trial_index < 4000; ++trial_index) {
+    auto& draw = trial_index % 2 == 0 ? u : tension;
+    const Vec3 trial = sorted_descending(Vec3(draw(rng), draw(rng), draw(rng)));
+    const PrincipalReturn r = yield.return_map(kSoil, trial, 0.0);
+    const Projection cpp = closest_point(trial, k, kSigmaC, kSoil.matrix(), sigma_t);
+    ++counts[static_cast<int>(r.state)];
+    if (std::abs(r.tau[0] - sigma_t) < 1e-9 * kSigmaC) ++cut;
+    EXPECT_LT((r.tau - cpp.tau).norm(), 1e-8 * kSigmaC) << "trial " << trial.transpose();
+    EXPECT_LE(r.tau[0], sigma_t * (1 + 1e-10));
+    EXPECT_LE(yield.yield_function(r.tau), 1e-10 * kSigmaC);
+  }
+  for (int region = 1; region < 4; ++region) EXPECT_GT(counts[region], 50) << "region " << region;
+  EXPECT_GT(cut, 500);
+  std::printf("cut-off: elastic, one, two, three planes: %d %d %d %d; on the cut-off %d\n", counts[0],
+              counts[1], counts[2], counts[3], cut);
+}
+
+// The multi-surface return over the pyramid's three planes alone is the closed-form return of Clausen
+// et al. (stress and principal tangent), non-associated flow included: one algorithm checks the other.
+// Away from the apex: there six planes meet, and the three of the sorted principal space are linearly
+// dependent there (the routine serves the cut-off, which removes the apex, so it needs no apex case).
+TEST(Plasticity, MultisurfaceReturnOfThePyramidIsTheClosedForm) {
+  const MohrCoulombYield yield{5e3, 25 * kDeg, 5 * kDeg};
+  const double sp = std::sin(25 * kDeg), k = (1 + sp) / (1 - sp);
+  const double m = (1 + std::sin(5 * kDeg)) / (1 - std::sin(5 * kDeg));
+  const YieldPlane planes[3] = {{Vec3(k, 0, -1), kSigmaC, Vec3(m, 0, -1)},
+                                {Vec3(0, k, -1), kSigmaC, Vec3(0, m, -1)},
+                                {Vec3(k, -1, 0), kSigmaC, Vec3(m, -1, 0)}};
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> u(-8 * kSigmaC, 3 * kSigmaC);
+  int compared = 0;
+  for (int trial_index = 0; trial_index < 2000; ++trial_index) {
+    const Vec3 trial = sorted_descending(Vec3(u(rng), u(rng), u(rng)));
+    const PrincipalReturn closed = yield.return_map(kSoil, trial, 0.0);
+    if (closed.state == YieldState::Apex) continue;
+    ++compared;
+    const PrincipalReturn multi = multisurface_return(kSoil, planes, trial, kSigmaC);
+    EXPECT_EQ(closed.state, multi.state) << trial.transpose();
+    EXPECT_LT((closed.tau - multi.tau).norm(), 1e-8 * kSigmaC) << trial.transpose();
+    EXPECT_LT((closed.tangent - multi.tangent).norm(), 1e-8 * kSoil.matrix().norm()) << trial.transpose();
+  }
+  EXPECT_GT(compared, 1500);
 }
 
 TEST(Plasticity, ReturnedStressesLieOnTheYieldSurface) {

@@ -310,7 +310,7 @@ class ExplicitStepper {
   void update_strain(double dt) {
     update_deformation(s_.particles, dt, s_.solver.deformation_update);
     const ArtificialViscosity av{s_.solver.av_linear, s_.solver.av_quadratic, s_.grid.min_cell_size()};
-    const long bad = update_stress<D>(s_.materials, s_.particles, av);
+    const long bad = update_stress<D>(s_.materials, s_.particles, av, dt);
     if (bad >= 0) {
       std::ostringstream what;
       const double J = s_.particles.F[bad].determinant();

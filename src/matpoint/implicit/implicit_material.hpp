@@ -46,10 +46,11 @@ class ImplicitMaterial {
   /// True for the models with a plastic history (state: hencky_plasticity.hpp's layout).
   [[nodiscard]] bool plastic() const { return !std::holds_alternative<NeoHookean>(model_); }
 
-  /// tau(F) (D x D; plane strain in 2-D) from the stored state, which it does not change.
+  /// tau(F) (D x D; plane strain in 2-D) from the stored state, which it does not change; dt: the
+  /// step (rate-dependent yield stresses).
   template <class S, int D>
-  [[nodiscard]] Eigen::Matrix<S, D, D> kirchhoff_stress(const Eigen::Matrix<S, D, D>& F,
-                                                        const double* state) const {
+  [[nodiscard]] Eigen::Matrix<S, D, D> kirchhoff_stress(const Eigen::Matrix<S, D, D>& F, const double* state,
+                                                        double dt) const {
     return std::visit(
         [&](const auto& m) -> Eigen::Matrix<S, D, D> {
           using M = std::decay_t<decltype(m)>;
@@ -61,7 +62,7 @@ class ImplicitMaterial {
               for (int j = 0; j < D; ++j) value(i, j) = value_of(F(i, j));
             constexpr bool derivative = !std::is_same_v<S, double>;
             return kirchhoff_of<S, D>(
-                hencky_plastic_response(m.elastic, m.yield, embed3<D>(value), state, derivative), F);
+                hencky_plastic_response(m.elastic, m.yield, embed3<D>(value), state, derivative, dt), F);
           }
         },
         model_);
@@ -69,14 +70,14 @@ class ImplicitMaterial {
 
   /// The Cauchy stress at the converged F (and sigma_zz in plane strain); advances the plastic state.
   template <int D>
-  [[nodiscard]] Mat<D> update_stress(const Mat<D>& F, double* state, double& sigma_zz) const {
+  [[nodiscard]] Mat<D> update_stress(const Mat<D>& F, double* state, double& sigma_zz, double dt) const {
     return std::visit(
         [&](const auto& m) -> Mat<D> {
           using M = std::decay_t<decltype(m)>;
           if constexpr (std::is_same_v<M, NeoHookean>)
             return m.template stress<D>(F, sigma_zz);
           else
-            return m.template stress<D>(F, 0.0, state, sigma_zz);
+            return m.template stress<D>(F, 0.0, state, sigma_zz, dt);
         },
         model_);
   }
@@ -88,18 +89,19 @@ class ImplicitMaterial {
 /// tau(F) of a model with or without a state argument (the unit tests pass NeoHookean itself).
 template <class S, int D, class Model>
 [[nodiscard]] Eigen::Matrix<S, D, D> kirchhoff_stress_of(const Model& m, const Eigen::Matrix<S, D, D>& F,
-                                                         const double* state) {
+                                                         const double* state, double dt) {
   if constexpr (std::is_same_v<Model, ImplicitMaterial>)
-    return m.template kirchhoff_stress<S, D>(F, state);
+    return m.template kirchhoff_stress<S, D>(F, state, dt);
   else
     return m.template kirchhoff_stress<S, D>(F);
 }
 
 /// The converged stress update of a model with or without a state.
 template <int D, class Model>
-[[nodiscard]] Mat<D> updated_stress_of(const Model& m, const Mat<D>& F, double* state, double& sigma_zz) {
+[[nodiscard]] Mat<D> updated_stress_of(const Model& m, const Mat<D>& F, double* state, double& sigma_zz,
+                                       double dt) {
   if constexpr (std::is_same_v<Model, ImplicitMaterial>)
-    return m.template update_stress<D>(F, state, sigma_zz);
+    return m.template update_stress<D>(F, state, sigma_zz, dt);
   else
     return m.template stress<D>(F, sigma_zz);
 }

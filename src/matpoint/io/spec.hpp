@@ -5,6 +5,7 @@
 #include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,9 +65,12 @@ struct MaterialSpec {
   // degrees, optional linear softening to (c_r, phi_r) at plastic strain eps_s (0: none)
   double cohesion = 0, friction_angle = 0, dilation_angle = 0;
   double residual_cohesion = 0, residual_friction_angle = 0, softening_strain = 0;
+  double tension_cutoff = std::numeric_limits<double>::infinity();  // mohr_coulomb: sigma_t (none: infinite)
   DruckerPragerMatch match = DruckerPragerMatch::PlaneStrain;
   // von_mises (material/von_mises.hpp): initial yield stress and linear hardening modulus
   double yield_stress = 0, hardening_modulus = 0;
+  // von_mises, optional Johnson-Cook terms (B eps_p^n hardening, C ln(rate / reference rate)); B = C = 0: none
+  double jc_b = 0, jc_n = 1, jc_c = 0, jc_reference_rate = 1;
   // Rigid: the prescribed velocity of its particles, one function of time per component (zero by
   // default); a rigid material feels no stress and needs "contact" (docs/theory/contact.md).
   std::array<TimeFunction, 3> rigid_velocity{TimeFunction{{}, {0.0}}, TimeFunction{{}, {0.0}},

@@ -53,8 +53,8 @@ struct DruckerPragerYield {
     return xi * c / eta;
   }
 
-  [[nodiscard]] PrincipalReturn return_map(const HenckyElasticity& elastic, const Vec3& trial,
-                                           double eps_p) const {
+  [[nodiscard]] PrincipalReturn return_map(const HenckyElasticity& elastic, const Vec3& trial, double eps_p,
+                                           double /*dt: rate-independent*/ = 0.0) const {
     const auto [c, phi] = strength_law.strength(eps_p);
     const auto [eta, xi] = coefficients(phi);
     const double eta_bar = coefficients(strength_law.dilation_angle).first;

@@ -142,14 +142,15 @@ struct Spectral {
 }
 
 /// One stress update of a Hencky plastic model (Yield: the return map): the Kirchhoff stress at F
-/// from the stored state, which it advances. Elastic steps leave C_p^-1 untouched.
+/// from the stored state, which it advances. Elastic steps leave C_p^-1 untouched. dt: the step's
+/// duration, for rate-dependent yield stresses (0: rate terms off).
 template <class Yield>
-Mat3 hencky_plastic_update(const HenckyElasticity& elastic, const Yield& yield, const Mat3& F,
-                           double* state) {
+Mat3 hencky_plastic_update(const HenckyElasticity& elastic, const Yield& yield, const Mat3& F, double* state,
+                           double dt = 0.0) {
   const Mat3 Cp_inv = plastic_metric(state);
   const Spectral trial = hencky_strain(F * Cp_inv * F.transpose());
   const PrincipalReturn r =
-      yield.return_map(elastic, elastic.stress(trial.eps), state[kEquivalentPlasticStrain]);
+      yield.return_map(elastic, elastic.stress(trial.eps), state[kEquivalentPlasticStrain], dt);
   state[kYieldState] = static_cast<double>(r.state);
   if (r.state != YieldState::Elastic) {
     const Vec3 eps_e = elastic.strain(r.tau);
@@ -171,10 +172,11 @@ struct HenckyPlastic {
   static constexpr int state_size = kPlasticStateSize;
 
   /// Cauchy stress tau / J - q I at F (q: artificial viscosity); advances the state. sigma_zz is the
-  /// out-of-plane component (plane strain).
+  /// out-of-plane component (plane strain). dt: the step (rate-dependent yield stresses; 0: off).
   template <int D>
-  [[nodiscard]] Mat<D> stress(const Mat<D>& F, double q, double* state, double& sigma_zz) const {
-    const Mat3 tau = hencky_plastic_update(elastic, yield, embed3<D>(F), state);
+  [[nodiscard]] Mat<D> stress(const Mat<D>& F, double q, double* state, double& sigma_zz,
+                              double dt = 0.0) const {
+    const Mat3 tau = hencky_plastic_update(elastic, yield, embed3<D>(F), state, dt);
     const double J = F.determinant();
     sigma_zz = tau(2, 2) / J - q;
     return tau.topLeftCorner<D, D>() / J - q * Mat<D>::Identity();

@@ -1,10 +1,10 @@
 #include "matpoint/material/material.hpp"
 
-#include "matpoint/core/errors.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
+
+#include "matpoint/core/errors.hpp"
 
 namespace matpoint {
 
@@ -18,7 +18,8 @@ MohrCoulombYield mohr_coulomb_yield(const MaterialSpec& spec) {
           spec.dilation_angle * kRadiansPerDegree,
           spec.residual_cohesion,
           spec.residual_friction_angle * kRadiansPerDegree,
-          spec.softening_strain};
+          spec.softening_strain,
+          spec.tension_cutoff};
 }
 
 }  // namespace
@@ -36,7 +37,10 @@ Material make_material(const MaterialSpec& spec) {
     case MaterialModel::DruckerPrager:
       return DruckerPrager{spec.density, {spec.lambda, spec.mu}, {mohr_coulomb_yield(spec), spec.match}};
     case MaterialModel::VonMises:
-      return VonMises{spec.density, {spec.lambda, spec.mu}, {spec.yield_stress, spec.hardening_modulus}};
+      return VonMises{spec.density,
+                      {spec.lambda, spec.mu},
+                      {spec.yield_stress, spec.hardening_modulus, spec.jc_b, spec.jc_n, spec.jc_c,
+                       spec.jc_reference_rate}};
     case MaterialModel::LinearElastic:
       break;
   }
@@ -94,15 +98,19 @@ void set_geostatic_stress(const std::vector<Material>& materials, const std::vec
     bool along_vertical = gravity[vertical] < 0.0;
     for (int a = 0; a < D; ++a) along_vertical = along_vertical && (a == vertical || gravity[a] == 0.0);
     if (!along_vertical)
-      throw InputError({{"bodies[" + std::to_string(b) + "].geostatic", "gravity not along -" +
-                                                                           std::string(1, "xyz"[vertical]),
-                         "loads.gravity along -" + std::string(1, "xyz"[vertical]) + " for a geostatic stress"}});
+      throw InputError(
+          {{"bodies[" + std::to_string(b) + "].geostatic",
+            "gravity not along -" + std::string(1, "xyz"[vertical]),
+            "loads.gravity along -" + std::string(1, "xyz"[vertical]) + " for a geostatic stress"}});
     const double g = -gravity[vertical];
     for (std::size_t p = 0; p < particles.size(); ++p) {
       if (particles.body[p] != static_cast<int>(b)) continue;
       std::visit(
           [&](const auto& model) {
-            if constexpr (requires { model.elastic.mu; model.yield; }) {  // the plastic models
+            if constexpr (requires {
+                            model.elastic.mu;
+                            model.yield;
+                          }) {  // the plastic models
               const double depth = std::max(bodies[b].geostatic_surface - particles.x[p][vertical], 0.0);
               const double vertical_stress = -model.density * g * depth;
               Vec3 tau = Vec3::Constant(bodies[b].k0 * vertical_stress);  // at F = I, tau = sigma
@@ -118,7 +126,7 @@ void set_geostatic_stress(const std::vector<Material>& materials, const std::vec
 
 template <int D>
 long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles,
-                   const ArtificialViscosity& av) {
+                   const ArtificialViscosity& av, double dt) {
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
   const auto stride = static_cast<std::ptrdiff_t>(particles.state_stride);
   long first_bad = -1;
@@ -140,7 +148,9 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
                                                        particles.L[p].trace(), c)
                                          : 0.0;
             double zz;
-            if constexpr (requires { Model::state_size; }) {
+            if constexpr (requires { model.yield; }) {  // the plastic models: rate terms need dt
+              particles.stress[p] = model.template stress<D>(F, q, &particles.state[p * stride], zz, dt);
+            } else if constexpr (requires { Model::state_size; }) {
               particles.stress[p] = model.template stress<D>(F, q, &particles.state[p * stride], zz);
             } else {
               particles.stress[p] = model.template stress<D>(F, zz) - q * Mat<D>::Identity();
@@ -182,15 +192,18 @@ double strain_energy(const std::vector<Material>& materials, const ParticleSet<D
 template void set_state_layout<1>(const std::vector<Material>&, ParticleSet<1>&);
 template void set_state_layout<2>(const std::vector<Material>&, ParticleSet<2>&);
 template void set_state_layout<3>(const std::vector<Material>&, ParticleSet<3>&);
-template void set_geostatic_stress<1>(const std::vector<Material>&, const std::vector<BodySpec>&, const Triple&,
-                                       ParticleSet<1>&);
-template void set_geostatic_stress<2>(const std::vector<Material>&, const std::vector<BodySpec>&, const Triple&,
-                                       ParticleSet<2>&);
-template void set_geostatic_stress<3>(const std::vector<Material>&, const std::vector<BodySpec>&, const Triple&,
-                                       ParticleSet<3>&);
-template long update_stress<1>(const std::vector<Material>&, ParticleSet<1>&, const ArtificialViscosity&);
-template long update_stress<2>(const std::vector<Material>&, ParticleSet<2>&, const ArtificialViscosity&);
-template long update_stress<3>(const std::vector<Material>&, ParticleSet<3>&, const ArtificialViscosity&);
+template void set_geostatic_stress<1>(const std::vector<Material>&, const std::vector<BodySpec>&,
+                                      const Triple&, ParticleSet<1>&);
+template void set_geostatic_stress<2>(const std::vector<Material>&, const std::vector<BodySpec>&,
+                                      const Triple&, ParticleSet<2>&);
+template void set_geostatic_stress<3>(const std::vector<Material>&, const std::vector<BodySpec>&,
+                                      const Triple&, ParticleSet<3>&);
+template long update_stress<1>(const std::vector<Material>&, ParticleSet<1>&, const ArtificialViscosity&,
+                               double);
+template long update_stress<2>(const std::vector<Material>&, ParticleSet<2>&, const ArtificialViscosity&,
+                               double);
+template long update_stress<3>(const std::vector<Material>&, ParticleSet<3>&, const ArtificialViscosity&,
+                               double);
 template double strain_energy<1>(const std::vector<Material>&, const ParticleSet<1>&, int);
 template double strain_energy<2>(const std::vector<Material>&, const ParticleSet<2>&, int);
 template double strain_energy<3>(const std::vector<Material>&, const ParticleSet<3>&, int);

@@ -12,13 +12,20 @@
 // evaluated at the start of the step (explicit in the hardening variable, so the return stays
 // closed form). Equivalent plastic strain: the plastic multiplier |D eps_p| / |b| (extraction §7.2.3,
 // ambiguity A12).
+// Optional tension cut-off (beyond the paper; a Rankine limit tau_A <= sigma_t, 0 <= sigma_t < c cot phi,
+// associated): when the pyramid's return (or an elastic trial) has tau_1 > sigma_t, the return is the
+// multi-surface one over the three pyramid planes and the three cut-off planes
+// (multisurface_return.hpp); the equivalent plastic strain grows by the same |D^-1 (tau^trial - tau)| /
+// sqrt(1 + m^2) measure.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "matpoint/material/hencky_plasticity.hpp"
+#include "matpoint/material/multisurface_return.hpp"
 
 namespace matpoint {
 
@@ -27,7 +34,8 @@ struct MohrCoulombYield {
   double friction_angle;  // phi (radians), 0 < phi < pi/2
   double dilation_angle;  // psi (radians), 0 <= psi <= phi
   double residual_cohesion = 0.0, residual_friction_angle = 0.0;
-  double softening_strain = 0.0;  // eps_s; 0: no softening
+  double softening_strain = 0.0;                                    // eps_s; 0: no softening
+  double tension_cutoff = std::numeric_limits<double>::infinity();  // sigma_t; infinite: none
 
   /// (c, phi) at equivalent plastic strain eps_p.
   [[nodiscard]] std::pair<double, double> strength(double eps_p) const {
@@ -48,8 +56,8 @@ struct MohrCoulombYield {
     return (1.0 + s) / (1.0 - s) * tau[0] - tau[2] - 2.0 * c * std::cos(phi) / (1.0 - s);
   }
 
-  [[nodiscard]] PrincipalReturn return_map(const HenckyElasticity& elastic, const Vec3& trial,
-                                           double eps_p) const {
+  [[nodiscard]] PrincipalReturn return_map(const HenckyElasticity& elastic, const Vec3& trial, double eps_p,
+                                           double /*dt: rate-independent*/ = 0.0) const {
     const auto [c, phi] = strength(eps_p);
     const double sp = std::sin(phi), spsi = std::sin(dilation_angle);
     const double k = (1.0 + sp) / (1.0 - sp), m = (1.0 + spsi) / (1.0 - spsi);
@@ -57,7 +65,7 @@ struct MohrCoulombYield {
     const Mat3 D = elastic.matrix();
     PrincipalReturn r{trial, D, 0.0, YieldState::Elastic};
     const double f = k * trial[0] - trial[2] - sigma_c;
-    if (!(f > 0.0)) return r;
+    if (!(f > 0.0)) return with_tension_cutoff(r, elastic, trial, k, m, sigma_c);
 
     const Vec3 a(k, 0.0, -1.0), b(m, 0.0, -1.0);
     const Vec3 r_p = D * b / a.dot(D * b);  // plane corrector
@@ -89,7 +97,22 @@ struct MohrCoulombYield {
     }
     if (r.state == YieldState::Apex) r.tangent.setZero();
     r.plastic_strain_increment = elastic.strain(trial - r.tau).norm() / std::sqrt(1.0 + m * m);
-    return r;
+    return with_tension_cutoff(r, elastic, trial, k, m, sigma_c);
+  }
+
+  /// The pyramid's return r, or the multi-surface return with the cut-off planes when r (or the
+  /// elastic trial) has tau_1 > sigma_t.
+  [[nodiscard]] PrincipalReturn with_tension_cutoff(const PrincipalReturn& r, const HenckyElasticity& elastic,
+                                                    const Vec3& trial, double k, double m,
+                                                    double sigma_c) const {
+    if (!(r.tau[0] > tension_cutoff * (1.0 + 1e-12))) return r;
+    const YieldPlane planes[6] = {
+        {Vec3(k, 0, -1), sigma_c, Vec3(m, 0, -1)},      {Vec3(0, k, -1), sigma_c, Vec3(0, m, -1)},
+        {Vec3(k, -1, 0), sigma_c, Vec3(m, -1, 0)},      {Vec3(1, 0, 0), tension_cutoff, Vec3(1, 0, 0)},
+        {Vec3(0, 1, 0), tension_cutoff, Vec3(0, 1, 0)}, {Vec3(0, 0, 1), tension_cutoff, Vec3(0, 0, 1)}};
+    PrincipalReturn out = multisurface_return(elastic, planes, trial, sigma_c + tension_cutoff);
+    out.plastic_strain_increment = elastic.strain(trial - out.tau).norm() / std::sqrt(1.0 + m * m);
+    return out;
   }
 };
 

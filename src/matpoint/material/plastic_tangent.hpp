@@ -30,15 +30,15 @@ struct PlasticResponse {
 };
 
 /// tau(F) from the stored state (not advanced) and, unless `derivative` is false, its derivative.
-/// F: 3 x 3 (embed3 for 2-D).
+/// F: 3 x 3 (embed3 for 2-D); dt: the step (rate-dependent yield stresses; 0: off).
 template <class Yield>
 [[nodiscard]] PlasticResponse hencky_plastic_response(const HenckyElasticity& elastic, const Yield& yield,
                                                       const Mat3& F, const double* state,
-                                                      bool derivative = true) {
+                                                      bool derivative = true, double dt = 0.0) {
   const Mat3 Cp_inv = plastic_metric(state);
   const Spectral trial = hencky_strain(F * Cp_inv * F.transpose());
   const PrincipalReturn r =
-      yield.return_map(elastic, elastic.stress(trial.eps), state[kEquivalentPlasticStrain]);
+      yield.return_map(elastic, elastic.stress(trial.eps), state[kEquivalentPlasticStrain], dt);
   PlasticResponse out{from_principal(r.tau, trial.axes), Tensor4::Zero(), r.state};
   if (!derivative) return out;
 

@@ -300,6 +300,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   data.options.inertia_coefficient = options_.static_analysis ? 0.0 : c.displacement;
   data.options.receding_in_gradient = options_.receding_in_gradient;
   data.options.small_strain = options_.small_strain;
+  data.options.dt = dt;
   system_.setup(std::move(data));
 
   // u~ = 0 (§6) but at moving Dirichlet dofs, which keep their value (identity rows, zero residual).
@@ -371,7 +372,7 @@ void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, Impl
     double* history = particles.state_stride > 0
                           ? &particles.state[p * static_cast<std::size_t>(particles.state_stride)]
                           : nullptr;
-    particles.stress[p] = updated_stress_of<D>(m, particles.F[p], history, sigma_zz);
+    particles.stress[p] = updated_stress_of<D>(m, particles.F[p], history, sigma_zz, dt);
     if constexpr (D == 2) particles.stress_zz[p] = sigma_zz;
   }
 }

@@ -28,6 +28,7 @@ struct ParticleResidualOptions {
   /// code; default) or from the uncorrected x~ + u~.
   bool receding_in_gradient = true;
   bool small_strain = false;  // Hooke's law on sym(F - 1), reference gradients (see above)
+  double dt = 0.0;            // the step (rate-dependent yield stresses)
 };
 
 /// r_I += m_p (a_p - b_p) N_I + P grad~ N_I for particle p, with a_p from (21) on the uncorrected
@@ -86,7 +87,7 @@ void add_particle_residual(const ParticleQuadrature<E>& q, Index first, Index la
       add_inertia_and_stress(q, p, options, u, MatS(q.volume0[static_cast<std::size_t>(p)] * sigma), r);
       continue;
     }
-    const MatS tau = kirchhoff_stress_of<S, D>(material, F, q.state[static_cast<std::size_t>(p)]);
+    const MatS tau = kirchhoff_stress_of<S, D>(material, F, q.state[static_cast<std::size_t>(p)], options.dt);
     MatS H_gradient = H;
     if (switches != 0 && !options.receding_in_gradient) {
       H_gradient = MatS::Identity();

@@ -47,9 +47,11 @@ MaterialSpec SpecReader::read_material(const Value& v) {
                      "friction_angle",
                      "dilation_angle",
                      "softening",
+                     "tension_cutoff",
                      "match",
                      "yield_stress",
-                     "hardening_modulus"});
+                     "hardening_modulus",
+                     "johnson_cook"});
   MaterialSpec out;
   if (!m.valid()) {
     names_complete_ = false;
@@ -87,18 +89,23 @@ void SpecReader::read_plasticity(const Object& m, MaterialModel model, MaterialS
     if (!frictional && m.has(key))
       m.optional(key).fail(std::string("no \"") + key +
                            "\" unless model is \"mohr_coulomb\" or \"drucker_prager\"");
+  if (model != MaterialModel::MohrCoulomb && m.has("tension_cutoff"))
+    m.optional("tension_cutoff").fail("no \"tension_cutoff\" unless model is \"mohr_coulomb\"");
   if (model != MaterialModel::DruckerPrager && m.has("match"))
     m.optional("match").fail("no \"match\" unless model is \"drucker_prager\"");
-  for (const char* key : {"yield_stress", "hardening_modulus"})
+  for (const char* key : {"yield_stress", "hardening_modulus", "johnson_cook"})
     if (!metal && m.has(key))
       m.optional(key).fail(std::string("no \"") + key + "\" unless model is \"von_mises\"");
   if (frictional) read_friction(m, out);
+  if (model == MaterialModel::MohrCoulomb && m.has("tension_cutoff")) read_tension_cutoff(m, out);
   if (model == MaterialModel::DruckerPrager)
     set_if(out.match, m.optional("match").choice(kDruckerPragerMatches));
   if (metal) {
     set_if(out.yield_stress, m.required("yield_stress").number(kPositive));
     // H < 0 would make the yield stress sigma_y + H eps_p negative at eps_p = sigma_y / |H|.
     set_if(out.hardening_modulus, m.optional("hardening_modulus").number(kNonNegative));
+    if (m.has("johnson_cook"))
+      read_johnson_cook(Object(m.optional("johnson_cook"), {"B", "n", "C", "reference_rate"}), out);
   }
 }
 
@@ -121,6 +128,36 @@ void SpecReader::read_friction(const Object& m, MaterialSpec& out) {
                                           .number({std::max(out.dilation_angle, 0.0), out.friction_angle,
                                                    out.dilation_angle == 0.0, false}));
   set_if(out.softening_strain, soft.required("plastic_strain").number(kPositive));
+}
+
+/// von_mises "johnson_cook": {"B" >= 0, "n" > 0 (default 1), "C" >= 0 (default 0), "reference_rate" > 0
+/// (default 1)}: sigma_f = (sigma_y + H eps_p + B eps_p^n)(1 + C ln(max(rate / reference_rate, 1))).
+void SpecReader::read_johnson_cook(const Object& jc, MaterialSpec& out) {
+  if (!jc.valid()) return;
+  set_if(out.jc_b, jc.required("B").number(kNonNegative));
+  set_if(out.jc_n, jc.optional("n").number(kPositive));
+  set_if(out.jc_c, jc.optional("C").number(kNonNegative));
+  set_if(out.jc_reference_rate, jc.optional("reference_rate").number(kPositive));
+}
+
+/// Mohr-Coulomb's tension cut-off sigma_t: 0 <= sigma_t < c cot(phi) (at the apex or above it the
+/// cut-off would never act).
+void SpecReader::read_tension_cutoff(const Object& m, MaterialSpec& out) {
+  const double apex = out.friction_angle > 0
+                          ? out.cohesion / std::tan(out.friction_angle * 3.14159265358979323846 / 180)
+                          : 0.0;
+  std::ostringstream bound;
+  bound << "a stress in [0, c cot(phi)) = [0, " << apex
+        << ") (the apex of the Mohr-Coulomb pyramid; a cut-off at or "
+        << "above it never acts)";
+  const Value v = m.optional("tension_cutoff");
+  const auto sigma_t = v.number(kNonNegative);
+  if (!sigma_t) return;
+  if (!(*sigma_t < apex)) {
+    v.fail(bound.str());
+    return;
+  }
+  out.tension_cutoff = *sigma_t;
 }
 
 /// model "mie_gruneisen" (material/mie_gruneisen.hpp): C0, S, Gamma0 and an optional shear modulus.

@@ -46,6 +46,10 @@ class SpecReader {
   /// {"cohesion": c_r, "friction_angle": phi_r, "plastic_strain": eps_s} with c_r <= c,
   /// psi <= phi_r <= phi.
   static void read_friction(const Object& m, MaterialSpec& out);
+  /// Mohr-Coulomb's tension cut-off: 0 <= sigma_t < c cot(phi).
+  static void read_tension_cutoff(const Object& m, MaterialSpec& out);
+  /// J2's optional Johnson-Cook terms.
+  static void read_johnson_cook(const Object& jc, MaterialSpec& out);
 
   /// model "mie_gruneisen" (material/mie_gruneisen.hpp): C0, S, Gamma0 and an optional shear modulus.
   static MaterialSpec read_mie_gruneisen(const Object& m, MaterialSpec& out);
