@@ -302,12 +302,12 @@ const std::vector<Mistake> kMistakes = {
      "grid.max", "[1,0]"},
     {"MissingGrid", [](json& j) { j.erase("grid"); }, "grid", "missing"},
     {"MissingEndTime", [](json& j) { j["solver"].erase("end_time"); }, "solver.end_time", "missing"},
-    {"PolygonIn3D",
+    {"PolygonIn3D",  // a 3-D polygon is a prism along z: without its z range
      [](json& j) {
        use_3d_grid(j);
        j["bodies"][0]["shape"] = json::parse(R"({"type": "polygon", "vertices": [[0, 0], [1, 0], [0, 1]]})");
      },
-     "bodies[0].shape.type", "\"polygon\""},
+     "bodies[0].shape.z", "missing"},
     {"PolygonWithoutArea",
      [](json& j) {
        j["bodies"][0]["shape"] =

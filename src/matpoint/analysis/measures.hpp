@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 24> kMeasures{{
+inline constexpr std::array<MeasureInfo, 30> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |B(t) - B(0)| / E_s, B = K + U + D - W_ext (kinetic, strain energy, friction "
      "work of contact, external work), E_s = max(K(0) + U(0), max |W_ext| over the run): the energy given or "
@@ -84,6 +84,23 @@ inline constexpr std::array<MeasureInfo, 24> kMeasures{{
      "rigid floor normal to y with gravity (g sin theta, -g cos theta) and Coulomb friction mu; d = x shift "
      "of its centre of mass, d_exact = 1/2 g (sin theta - mu cos theta) t^2 when positive (sliding), else 0 "
      "(sticking); s = d_exact when sliding, 1/2 g sin theta t^2 (the frictionless slide) when sticking"},
+    {"total_mass_change",
+     "M(end) / M(0) - 1: the relative change of the bodies' total mass (history.csv mass columns) over the "
+     "run"},
+    {"final_max_x",
+     "at the end of the run, the largest x of any particle centre (about half a particle spacing inside the "
+     "body's surface): a run-out front (examples/soil-column-collapse)"},
+    {"final_runout_x",
+     "at the end of the run, the x behind which 99 % of the bodies' mass lies (particle centres): the front "
+     "of a granular deposit without the thin tail of single particles that its front sheds, whose length "
+     "scales with the particle size (examples/soil-column-collapse/granular.json)"},
+    {"final_max_y", "as final_max_x, along y"},
+    {"final_max_z",
+     "as final_max_x, along z: the length of a rod standing on a wall at z = 0 (examples/taylor-bar)"},
+    {"final_max_radius_xy",
+     "3-D: at the end of the run, the largest distance of any particle centre from the z axis: the radius "
+     "of a rod along the z axis where it is widest, less about half a particle spacing (the foot of "
+     "examples/taylor-bar)"},
 }};
 
 [[nodiscard]] constexpr bool is_known_measure(std::string_view name) {

@@ -270,6 +270,21 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
   if (name == "free_vibration_period") return free_vibration(spec, history).period;
   if (name == "free_vibration_amplitude_decay") return free_vibration(spec, history).decay;
   if (name == "free_vibration_mean_offset") return free_vibration(spec, history).offset;
+  if (name.starts_with("final_max_") && name.size() == 11) {  // final_max_x, _y, _z
+    const auto axis = static_cast<std::size_t>(name.back() - 'x');
+    return final_state && axis < 3 ? final_state->reach[axis] : kNaN;
+  }
+  if (name == "final_max_radius_xy") return final_state ? final_state->radius_xy : kNaN;
+  if (name == "final_runout_x") return final_state ? final_state->runout_x : kNaN;
+  if (name == "total_mass_change") {
+    if (history.samples.empty()) return kNaN;
+    const auto mass = [](const HistorySample& s) {
+      double m = 0.0;
+      for (double b : s.body_mass) m += b;
+      return m;
+    };
+    return mass(history.samples.back()) / mass(history.samples.front()) - 1.0;
+  }
   if (name == "shock_plateau_stress")
     return final_state ? shock_plateau_stress(final_state->stress_xx) : kNaN;
   if (name == "max_relative_energy_error") return max_relative_energy_error(history);

@@ -75,7 +75,7 @@ MemoryEstimate estimate_memory(const Spec& spec) {
     for (int a = 0; a < d; ++a) {
       double lo = body.min[a], hi = body.max[a];
       if (body.shape == BodyShape::Disk) lo = body.center[a] - body.radius, hi = body.center[a] + body.radius;
-      if (body.shape == BodyShape::Polygon) {
+      if (body.shape == BodyShape::Polygon && a < 2) {  // (a 3-D polygon is a prism: z from min/max)
         lo = hi = body.polygon.front()[a];
         for (const auto& v : body.polygon) lo = std::min(lo, v[a]), hi = std::max(hi, v[a]);
       }

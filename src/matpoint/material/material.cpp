@@ -89,20 +89,31 @@ void set_state_layout(const std::vector<Material>& materials, ParticleSet<D>& pa
   }
 }
 
+/// The geostatic (infinite-slope) Kirchhoff stress at F = I at `depth` below the free surface:
+/// sigma_vv = rho g_v depth, sigma_av = rho g_a depth (the shear of the slope-parallel planes, from
+/// d sigma_av / d x_v + rho g_a = 0 with no traction on the surface), sigma_aa = K0 sigma_vv for the
+/// other axes a (the vertical axis v the last one; g_v < 0).
+template <int D>
+Mat3 geostatic_stress(double density, const Triple& gravity, double k0, double depth) {
+  constexpr int vertical = D - 1;
+  const double vertical_stress = density * gravity[vertical] * depth;
+  Mat3 tau = Mat3(Vec3::Constant(k0 * vertical_stress).asDiagonal());
+  tau(vertical, vertical) = vertical_stress;
+  for (int a = 0; a < vertical; ++a) tau(a, vertical) = tau(vertical, a) = density * gravity[a] * depth;
+  return tau;
+}
+
 template <int D>
 void set_geostatic_stress(const std::vector<Material>& materials, const std::vector<BodySpec>& bodies,
                           const Triple& gravity, ParticleSet<D>& particles) {
   constexpr int vertical = D - 1;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (!bodies[b].geostatic) continue;
-    bool along_vertical = gravity[vertical] < 0.0;
-    for (int a = 0; a < D; ++a) along_vertical = along_vertical && (a == vertical || gravity[a] == 0.0);
-    if (!along_vertical)
-      throw InputError(
-          {{"bodies[" + std::to_string(b) + "].geostatic",
-            "gravity not along -" + std::string(1, "xyz"[vertical]),
-            "loads.gravity along -" + std::string(1, "xyz"[vertical]) + " for a geostatic stress"}});
-    const double g = -gravity[vertical];
+    if (!(gravity[vertical] < 0.0))
+      throw InputError({{"bodies[" + std::to_string(b) + "].geostatic",
+                         "gravity with no downward (-" + std::string(1, "xyz"[vertical]) + ") component",
+                         "loads.gravity with a negative " + std::string(1, "xyz"[vertical]) +
+                             " component for a geostatic stress"}});
     for (std::size_t p = 0; p < particles.size(); ++p) {
       if (particles.body[p] != static_cast<int>(b)) continue;
       std::visit(
@@ -112,11 +123,12 @@ void set_geostatic_stress(const std::vector<Material>& materials, const std::vec
                             model.yield;
                           }) {  // the plastic models
               const double depth = std::max(bodies[b].geostatic_surface - particles.x[p][vertical], 0.0);
-              const double vertical_stress = -model.density * g * depth;
-              Vec3 tau = Vec3::Constant(bodies[b].k0 * vertical_stress);  // at F = I, tau = sigma
-              tau[vertical] = vertical_stress;
-              const Vec3 b_e = (2.0 * model.elastic.strain(tau)).array().exp().matrix();
-              store_plastic_metric(Mat3(b_e.asDiagonal()), &particles.state[p * particles.state_stride]);
+              const Mat3 tau = geostatic_stress<D>(model.density, gravity, bodies[b].k0, depth);
+              // At F = I, b_e = C_p^-1 = exp(2 D^-1 tau) on tau's principal axes.
+              const Eigen::SelfAdjointEigenSolver<Mat3> eigen(tau);
+              const Vec3 b_e = (2.0 * model.elastic.strain(eigen.eigenvalues())).array().exp().matrix();
+              store_plastic_metric(from_principal(b_e, eigen.eigenvectors()),
+                                   &particles.state[p * particles.state_stride]);
             }
           },
           materials[static_cast<std::size_t>(particles.material[p])]);

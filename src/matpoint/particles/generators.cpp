@@ -49,6 +49,11 @@ void bounding_box(const BodySpec& body, Vec<D>& lo, Vec<D>& hi) {
         hi[a] = body.center[a] + body.radius;
         break;
       case BodyShape::Polygon:
+        if (a == 2) {  // a prism along z
+          lo[a] = body.min[a];
+          hi[a] = body.max[a];
+          break;
+        }
         lo[a] = hi[a] = body.polygon.front()[a];
         for (const auto& v : body.polygon) {
           lo[a] = std::min(lo[a], v[a]);
@@ -103,6 +108,8 @@ bool shape_contains(const BodySpec& body, const Vec<D>& x) {
     }
     case BodyShape::Polygon:
       if constexpr (D == 2) return polygon_contains(body.polygon, x[0], x[1]);
+      if constexpr (D == 3)  // a prism along z
+        return x[2] >= body.min[2] && x[2] <= body.max[2] && polygon_contains(body.polygon, x[0], x[1]);
       return false;
   }
   return false;

@@ -17,11 +17,14 @@
 //                                  in results.pvd beside the particles ("" for none)
 #pragma once
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -105,6 +108,35 @@ RunCounters start_state(const RunOptions& options, const Spec& spec, Solver& sol
   return run;
 }
 
+/// The bodies' reach (final-state measures final_max_x/y/z and final_max_radius_xy): the largest
+/// coordinate, and in 3-D the largest distance from the z axis, of any particle centre. (Not the
+/// particle domains: in a granular flow F grows without bound and a domain's extent means nothing.)
+/// And the x behind which 99 % of the mass lies (final_runout_x).
+template <int D>
+void add_reach(const ParticleSet<D>& ps, RunFacts& facts) {
+  if (ps.size() == 0) return;
+  for (int a = 0; a < D; ++a) {
+    double reach = -std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < ps.size(); ++p) reach = std::max(reach, ps.x[p][a]);
+    facts.final_reach[static_cast<std::size_t>(a)] = reach;
+  }
+  std::vector<std::pair<double, double>> x_mass(ps.size());  // (x, mass), for the 99 % mass front
+  double total = 0.0;
+  for (std::size_t p = 0; p < ps.size(); ++p) x_mass[p] = {ps.x[p][0], ps.mass[p]}, total += ps.mass[p];
+  std::sort(x_mass.begin(), x_mass.end());
+  double behind = 0.0;
+  for (const auto& [x, m] : x_mass)
+    if ((behind += m) >= 0.99 * total) {
+      facts.final_runout_x = x;
+      break;
+    }
+  if constexpr (D == 3) {
+    double radius = 0.0;
+    for (std::size_t p = 0; p < ps.size(); ++p) radius = std::max(radius, std::hypot(ps.x[p][0], ps.x[p][1]));
+    facts.final_radius_xy = radius;
+  }
+}
+
 /// The summary's facts that every solver shares: counts, time, threads, final stresses.
 template <int D>
 void add_state_facts(const Simulation<D>& sim, RunFacts& facts) {
@@ -115,6 +147,7 @@ void add_state_facts(const Simulation<D>& sim, RunFacts& facts) {
   facts.time = sim.time;
   facts.threads = current_threads();
   for (const auto& stress : sim.particles.stress) facts.final_stress_xx.push_back(stress(0, 0));
+  add_reach(sim.particles, facts);
 }
 
 }  // namespace run_loop_detail

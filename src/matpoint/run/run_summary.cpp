@@ -71,7 +71,7 @@ void add_solver_statistics(const RunFacts& f, nlohmann::json& s) {
 void add_checks(const Spec& spec, const RunFacts& f, const History& history, nlohmann::json& s) {
   s["checks"] = nlohmann::json::array();
   bool all_pass = true;
-  FinalState final_state{f.final_stress_xx};
+  FinalState final_state{f.final_stress_xx, f.final_reach, f.final_radius_xy, f.final_runout_x};
   for (const auto& c : spec.checks) {
     const double measured = evaluate_measure(c.measure, spec, history, f.momentum_scale, &final_state);
     const bool pass = std::isfinite(measured) && std::abs(measured - c.expected) <= c.tolerance;

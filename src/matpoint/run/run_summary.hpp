@@ -3,8 +3,10 @@
 // on the basis or the dimension of the run.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -17,6 +19,8 @@
 #include "matpoint/run/runner.hpp"
 
 namespace matpoint {
+
+inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 /// What the time loop found out, in plain numbers.
 struct RunFacts {
@@ -40,6 +44,11 @@ struct RunFacts {
   std::optional<nlohmann::json> implicit;         // implicit runs: Newton, cuts, assembly/solve times
   double momentum_scale = 0.0;                    // sum m |v| at time 0 (the momentum checks' scale)
   std::vector<double> final_stress_xx;            // every particle's sigma_xx (final-state measures)
+  // The bodies' reach at the end: per axis the largest coordinate of a particle centre, and (3-D)
+  // the largest distance of a particle centre from the z axis (final-state measures).
+  std::array<double, 3> final_reach{kNoValue, kNoValue, kNoValue};
+  double final_radius_xy = kNoValue;
+  double final_runout_x = kNoValue;  // the x behind which 99 % of the mass lies
   struct Probe {
     long particle = -1;                      // the followed particle's id
     std::vector<double> reference_position;  // its X

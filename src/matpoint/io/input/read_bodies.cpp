@@ -120,8 +120,10 @@ void SpecReader::read_shape(const Value& v, BodySpec& out) const {
         read_disk(Object(v, {"type", "center", "radius"}), out);
       break;
     case BodyShape::Polygon:
-      if (dim_ != 0 && dim_ != 2)
-        type.fail("\"box\" or \"disk\" (a polygon needs grid.dim 2)");
+      if (dim_ != 0 && dim_ != 2 && dim_ != 3)
+        type.fail("\"box\" or \"disk\" (a polygon needs grid.dim 2, or 3 with \"z\": a prism)");
+      else if (dim_ == 3)
+        read_prism(Object(v, {"type", "vertices", "z"}), out);
       else
         read_polygon(Object(v, {"type", "vertices"}), out);
       break;
@@ -228,6 +230,21 @@ void SpecReader::read_polygon(const Object& s, BodySpec& out) {
     list.fail("the vertices of a polygon with nonzero area");
 }
 
+/// A 3-D polygon: the prism of the polygon `vertices` in x-y between z = `z`[0] and `z`[1] (held in
+/// min[2], max[2]), e.g. a rod: a disk's polygon extruded along its axis (examples/taylor-bar).
+void SpecReader::read_prism(const Object& s, BodySpec& out) {
+  read_polygon(s, out);
+  const Value z = s.required("z");
+  const auto range = z.vector(2);
+  if (!range) return;
+  if (!((*range)[1] > (*range)[0])) {
+    z.fail("[z_min, z_max] with z_max > z_min");
+    return;
+  }
+  out.min[2] = (*range)[0];
+  out.max[2] = (*range)[1];
+}
+
 std::pair<Triple, Triple> SpecReader::bounding_box(const BodySpec& body, int dim) {
   Triple lo{}, hi{};
   switch (body.shape) {
@@ -249,6 +266,7 @@ std::pair<Triple, Triple> SpecReader::bounding_box(const BodySpec& body, int dim
           lo[a] = std::min(lo[a], p[a]);
           hi[a] = std::max(hi[a], p[a]);
         }
+      if (dim == 3) lo[2] = body.min[2], hi[2] = body.max[2];  // a prism
       return {lo, hi};
   }
   return {lo, hi};

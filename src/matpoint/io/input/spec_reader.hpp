@@ -76,6 +76,7 @@ class SpecReader {
   /// {"k0": K0 >= 0, "surface": height of the free surface}: an initial geostatic stress, held by
   /// a plastic material's history (the elastic models' stress is a function of F alone).
   void read_geostatic(const Value& v, BodySpec& out) const;
+  static void read_prism(const Object& s, BodySpec& out);
 
   void read_body_material(const Value& v, BodySpec& out) const;
 
