@@ -72,15 +72,7 @@ VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
       *kind != ConditionKind::Velocity)
     type.fail("\"fixed\", \"slip\" or \"velocity\" (an implicit run's conditions act on mesh boundaries)");
   set_if(out.kind, kind);
-  const Value velocity = c.optional("velocity");
-  if (out.kind == ConditionKind::Velocity) {
-    if (velocity.present())
-      read_prescribed_velocity(velocity, out);
-    else
-      c.missing("velocity", prescribed_velocity_text());
-  } else if (velocity.present()) {
-    velocity.fail("no velocity unless type is \"velocity\"");
-  }
+  read_condition_velocity(c, out);
   const auto boundary = c.required("boundary").string();
   if (boundary) {
     out.boundary = *boundary;
@@ -114,8 +106,15 @@ VelocityConditionSpec SpecReader::read_condition(const Object& c) const {
   set_if(out.kind, kind);
   if (!kind) return out;
   read_normal(c, *kind, out);
+  read_condition_velocity(c, out);
+  read_one_sided(c.optional("one_sided"), out);
+  return out;
+}
+
+/// "velocity": required for type "velocity" (grid faces, boxes and mesh boundaries alike), refused otherwise.
+void SpecReader::read_condition_velocity(const Object& c, VelocityConditionSpec& out) const {
   const Value velocity = c.optional("velocity");
-  if (*kind == ConditionKind::Velocity) {
+  if (out.kind == ConditionKind::Velocity) {
     if (velocity.present())
       read_prescribed_velocity(velocity, out);
     else
@@ -123,8 +122,6 @@ VelocityConditionSpec SpecReader::read_condition(const Object& c) const {
   } else if (velocity.present()) {
     velocity.fail("no velocity unless type is \"velocity\"");
   }
-  read_one_sided(c.optional("one_sided"), out);
-  return out;
 }
 
 /// "one_sided": true on a fixed or slip face (slip with the face's own normal), not with FMPM/XPIC.

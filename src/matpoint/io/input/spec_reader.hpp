@@ -124,6 +124,7 @@ class SpecReader {
   VelocityConditionSpec read_mesh_condition(const Object& c) const;
 
   /// "one_sided": true on a fixed or slip face (slip with the face's own normal), not with FMPM/XPIC.
+  void read_condition_velocity(const Object& c, VelocityConditionSpec& out) const;
   void read_one_sided(const Value& v, VelocityConditionSpec& out) const;
 
   /// One-sided conditions decide per step which nodes they hold; the FMPM/XPIC increments would need
