@@ -43,9 +43,6 @@ class ImplicitMaterial {
 
   double lambda = 0.0, mu = 0.0;  // elastic constants: soft stiffness (eq. (26)), small-strain checks
 
-  /// True for the models with a plastic history (state: hencky_plasticity.hpp's layout).
-  [[nodiscard]] bool plastic() const { return !std::holds_alternative<NeoHookean>(model_); }
-
   /// tau(F) (D x D; plane strain in 2-D) from the stored state, which it does not change; dt: the
   /// step (rate-dependent yield stresses).
   template <class S, int D>

@@ -144,8 +144,10 @@ class ParticleNewmarkStepper {
     return work;
   }
 
-  /// Particle p's material history (null when no material has one).
-  static const double* history(const ParticleSet<D>& particles, std::size_t p) {
+  /// Particle p's material history, null when no material has one (const for the residual's read,
+  /// mutable for the commit's update).
+  template <class Particles>
+  static auto material_history(Particles& particles, std::size_t p) -> decltype(particles.state.data()) {
     return particles.state_stride > 0 ? &particles.state[p * static_cast<std::size_t>(particles.state_stride)]
                                       : nullptr;
   }
@@ -257,7 +259,8 @@ void ParticleNewmarkStepper<E, Material>::build_quadrature(const ParticleSet<D>&
         if (any_face) bits = receding_switches<E>(x, element_receding_[k], particles.v[p]);
       q_.add(static_cast<Index>(p), state.xi[p], x, particles.mass[p], particles.volume0[p],
              particles.material[p], particles.F[p],
-             known_acceleration(particles, state, p, c) - options_.gravity, bits, history(particles, p));
+             known_acceleration(particles, state, p, c) - options_.gravity, bits,
+             material_history(particles, p));
     }
     q_.close_block();
   }
@@ -369,10 +372,8 @@ void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, Impl
       continue;
     }
     double sigma_zz = 0.0;
-    double* history = particles.state_stride > 0
-                          ? &particles.state[p * static_cast<std::size_t>(particles.state_stride)]
-                          : nullptr;
-    particles.stress[p] = updated_stress_of<D>(m, particles.F[p], history, sigma_zz, dt);
+    particles.stress[p] =
+        updated_stress_of<D>(m, particles.F[p], material_history(particles, p), sigma_zz, dt);
     if constexpr (D == 2) particles.stress_zz[p] = sigma_zz;
   }
 }
