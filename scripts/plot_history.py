@@ -189,7 +189,8 @@ def last_vtu(directory):
     pvd = os.path.join(directory, "results.pvd")
     if not os.path.exists(pvd):
         return None
-    datasets = list(ET.parse(pvd).getroot().iter("DataSet"))
+    # Only the particles (part 0, or no part): an implicit run adds its mesh as part 1 at every time.
+    datasets = [d for d in ET.parse(pvd).getroot().iter("DataSet") if d.get("part", "0") == "0"]
     if not datasets:
         return None
     return os.path.join(directory, datasets[-1].get("file")), datasets[-1].get("timestep")
