@@ -79,15 +79,21 @@ def plot_energy(h, title, plots, units):
     top.plot(t, h["kinetic_energy"], label="kinetic")
     top.plot(t, h["strain_energy"], label="strain")
     top.plot(t, h["total_energy"], label="total", lw=2, color="k")
+    dissipated = [(name, label) for name, label in (("friction_work", "friction work"),
+                                                     ("plastic_work", "plastic work"))
+                  if np.any(h.get(name, np.zeros(1)) != 0)]
+    for name, label in dissipated:
+        top.plot(t, h[name], "-.", label=label)
     if np.any(h.get("external_work", np.zeros(1)) != 0):
         top.plot(t, h["external_work"], "--", label="external work")
-        top.plot(t, h["energy_balance"], ":", label="total - external work")
+    if dissipated or np.any(h.get("external_work", np.zeros(1)) != 0):
+        top.plot(t, h["energy_balance"], ":", label="total + dissipated - external work")
     top.set_ylabel(axis_label("energy", units))
     top.set_title(short_title(title) or "energy")
     top.legend(loc="best")
     top.grid(alpha=0.3)
 
-    # Drift of B = K + U + D - W_ext over the energy scale seen so far, max(K(0) + U(0), max |W_ext|):
+    # Drift of B = K + U + D - W_ext (D: friction and plastic work) over the energy scale seen so far, max(K(0) + U(0), max |W_ext|):
     # the energy the problem was given or has received (the measure max_relative_energy_error uses
     # the same scale over the whole run). A block dropped from rest has K(0) + U(0) = 0 and is
     # measured against the work gravity has done.

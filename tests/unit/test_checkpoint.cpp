@@ -95,6 +95,7 @@ History history_of(int dim, int bodies) {
     s.min_jacobian = 0.99, s.rms_velocity_change = 1e-12;
     s.grid_momentum_difference = {1e-17, -2e-17, 0}, s.checkerboard_velocity = 0.25 + r;
     s.grid_rms_velocity = 1.0 / 7, s.hourglass_energy = 1e-9, s.friction_work = 0.125 + r;
+    s.plastic_work = 0.0625 + r;
     for (int b = 0; b < bodies; ++b) {
       s.body_kinetic.push_back(r + b + 0.1), s.body_strain.push_back(0.2), s.body_mass.push_back(0.3);
       s.body_momentum.push_back({1, 2, 3}), s.body_com_velocity.push_back({4, 5, 6.5});
@@ -182,6 +183,7 @@ void round_trip(const std::string& shape, const std::string& transfer) {
     EXPECT_EQ(x.body_com_velocity, y.body_com_velocity);
     EXPECT_EQ(x.body_com_position, y.body_com_position);
     EXPECT_EQ(x.friction_work, y.friction_work);
+    EXPECT_EQ(x.plastic_work, y.plastic_work);
   }
   EXPECT_EQ(history.csv(), h.csv());
 }

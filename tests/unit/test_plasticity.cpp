@@ -85,7 +85,7 @@ TEST(Plasticity, MohrCoulombApexAndUnconfinedStrengthAreThePapers) {
 /// iterations). Returns the axial Kirchhoff stress at each step.
 template <class Model>
 std::vector<double> uniaxial_stress_curve(const Model& model, const std::vector<double>& axial_log_strain,
-                                          double dt = 0.0) {
+                                          double dt = 0.0, std::vector<double>* final_state = nullptr) {
   std::vector<double> state(kPlasticStateSize, 0.0), out;
   double lateral = 0.0, previous = 0.0;
   for (double e : axial_log_strain) {
@@ -114,6 +114,7 @@ std::vector<double> uniaxial_stress_curve(const Model& model, const std::vector<
     previous = e;
     out.push_back(axial);
   }
+  if (final_state != nullptr) *final_state = state;
   return out;
 }
 
@@ -334,6 +335,46 @@ TEST(Plasticity, MohrCoulombRegionsEqualTheClosestPointProjection) {
   }
   for (int region = 0; region < 4; ++region) EXPECT_GT(counts[region], 100) << "region " << region;
   std::printf("elastic, plane, edge, apex trials: %d %d %d %d\n", counts[0], counts[1], counts[2], counts[3]);
+}
+
+// Tresca = Mohr-Coulomb with phi = psi = 0 (k = m = 1, sigma_c = 2 c, no apex): the return equals the
+// closest point of the prism tau_i - tau_j <= 2 c in the energy norm (associated flow), with states of
+// all three kinds (elastic, plane, edge) and never an apex.
+TEST(Plasticity, TrescaEqualsTheClosestPointProjection) {
+  const double c = 5e3, sigma_c = 2 * c;
+  const MohrCoulombYield tresca{c, 0.0, 0.0};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> wide(-6 * sigma_c, 6 * sigma_c), near(-sigma_c, sigma_c);
+  int counts[4] = {0, 0, 0, 0};
+  for (int trial_index = 0; trial_index < 4000; ++trial_index) {
+    auto& u = trial_index % 2 == 0 ? wide : near;  // half near the elastic prism
+    const Vec3 trial = sorted_descending(Vec3(u(rng), u(rng), u(rng)));
+    const PrincipalReturn r = tresca.return_map(kSoil, trial, 0.0);
+    const Projection cpp = closest_point(trial, 1.0, sigma_c, kSoil.matrix());
+    ++counts[static_cast<int>(r.state)];
+    EXPECT_LT((r.tau - cpp.tau).norm(), 1e-8 * sigma_c) << "trial " << trial.transpose();
+    if (r.state != YieldState::Elastic) {
+      EXPECT_NEAR(r.tau[0] - r.tau[2], sigma_c, 1e-10 * sigma_c) << trial.transpose();
+    }
+  }
+  EXPECT_EQ(counts[static_cast<int>(YieldState::Apex)], 0);
+  for (int region = 0; region < 3; ++region) EXPECT_GT(counts[region], 100) << "region " << region;
+  std::printf("Tresca: elastic, plane, edge trials: %d %d %d\n", counts[0], counts[1], counts[2]);
+}
+
+// The plastic work of the state ([kPlasticWork]) against the dissipation of perfect J2 plasticity,
+// sigma_y times the equivalent plastic strain (normality: tau : eps_p rate = |s| |eps_p rate| =
+// sqrt(2/3) sigma_y |eps_p rate| = sigma_y eps_p,eq rate on the yield surface), on the uniaxial
+// stress path to 5 % strain. The radial return puts tau on the yield surface and Delta eps_p along
+// it, so tau . Delta eps_p = sigma_y Delta eps_p,eq holds step by step: to round-off.
+TEST(Plasticity, PlasticWorkIsTheDissipation) {
+  const double E = 117e9, nu = 0.35, sy = 4e8;
+  const VonMises j2{8930, {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))}, {sy, 0.0}};
+  std::vector<double> strains, state;
+  for (int i = 1; i <= 2000; ++i) strains.push_back(0.05 * i / 2000);
+  uniaxial_stress_curve(j2, strains, 0.0, &state);
+  ASSERT_GT(state[kEquivalentPlasticStrain], 0.04);
+  EXPECT_NEAR(state[kPlasticWork] / (sy * state[kEquivalentPlasticStrain]), 1.0, 1e-9);
 }
 
 // The tension cut-off (beyond the paper): with associated flow the multi-surface return onto the

@@ -11,7 +11,7 @@ std::string History::csv() const {
   std::ostringstream out;
   out << "time,step,kinetic_energy,strain_energy,total_energy,external_work,energy_balance";
   for (int a = 0; a < dim; ++a) out << ",momentum_" << axis[a];
-  out << ",min_jacobian,rms_velocity_change,friction_work";
+  out << ",min_jacobian,rms_velocity_change,friction_work,plastic_work";
   for (int b = 0; b < body_count; ++b) {
     out << ",body" << b << "_kinetic_energy,body" << b << "_strain_energy";
     for (int a = 0; a < dim; ++a) out << ",body" << b << "_momentum_" << axis[a];
@@ -26,9 +26,10 @@ std::string History::csv() const {
   for (const auto& s : samples) {
     const double total = s.kinetic_energy + s.strain_energy;
     out << s.time << ',' << s.step << ',' << s.kinetic_energy << ',' << s.strain_energy << ',' << total << ','
-        << s.external_work << ',' << total + s.friction_work - s.external_work;
+        << s.external_work << ',' << total + s.friction_work + s.plastic_work - s.external_work;
     for (int a = 0; a < dim; ++a) out << ',' << s.momentum[a];
-    out << ',' << s.min_jacobian << ',' << s.rms_velocity_change << ',' << s.friction_work;
+    out << ',' << s.min_jacobian << ',' << s.rms_velocity_change << ',' << s.friction_work << ','
+        << s.plastic_work;
     for (int b = 0; b < body_count; ++b) {
       out << ',' << s.body_kinetic[b] << ',' << s.body_strain[b];
       for (int a = 0; a < dim; ++a) out << ',' << s.body_momentum[b][a];

@@ -14,6 +14,7 @@ struct HistorySample {
   double dt = 0.0;  // the size of the step that reached this row (0 at the start)
   double kinetic_energy = 0.0, strain_energy = 0.0, external_work = 0.0;
   double friction_work = 0.0;  // energy dissipated by contact friction (docs/theory/contact.md)
+  double plastic_work = 0.0;   // energy dissipated by plastic flow (material/hencky_plasticity.hpp)
   std::array<double, 3> momentum{}, external_impulse{};
   double min_jacobian = 1.0;
   double rms_velocity_change = 0.0;

@@ -16,7 +16,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// B = K + U + D - W_ext: kinetic, strain, friction work, external work (an exact run keeps B(0)).
 double energy_balance(const HistorySample& s) {
-  return s.kinetic_energy + s.strain_energy + s.friction_work - s.external_work;
+  return s.kinetic_energy + s.strain_energy + s.friction_work + s.plastic_work - s.external_work;
 }
 
 /// The energy scale of relative energy measures: the largest of the initial energy K(0) + U(0)

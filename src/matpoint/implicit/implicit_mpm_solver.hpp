@@ -117,6 +117,7 @@ class ImplicitMpmSolver {
         if (const auto faces = mesh_.boundary_faces.find(c.boundary); faces != mesh_.boundary_faces.end())
           for (const auto& face : faces->second) receding[face] = c.receding;
     }
+    collect_loaded_faces();
     auto options = stepper_options<D>(spec);
     options.gravity = gravity_at(0.0);
     options.not_fully_active = on_condition;  // A13 (b): boundary nodes count as not fully active
@@ -154,6 +155,7 @@ class ImplicitMpmSolver {
       const Vec<D> gravity = gravity_at(sim_.time + done + sub);  // at the end of the sub-step
       stepper_->set_gravity(gravity);
       stepper_->set_prescribed(prescribed_increments(sim_.time + done, sim_.time + done + sub));
+      stepper_->set_face_loads(face_loads_at(sim_.time + done + sub), face_loads_at(sim_.time + done));
       StepReport report = stepper_->step(sim_.particles, state_, sub);
       last_newton_ = report.newton;
       const int iterations = report.newton.iterations();
@@ -169,7 +171,7 @@ class ImplicitMpmSolver {
       }
       most_iterations = std::max(most_iterations, iterations);
       account_work(sub, gravity);
-      sim_.external_work += report.boundary_work;
+      sim_.external_work += report.boundary_work + report.load_work;
       done += sub;
     }
     ++sim_.step;
@@ -305,6 +307,43 @@ class ImplicitMpmSolver {
     return g;
   }
 
+  /// The (element, face, load index) of every face of the loads.tractions boundaries; throws
+  /// InputError naming the load when the mesh has no such boundary.
+  void collect_loaded_faces() {
+    for (std::size_t k = 0; k < spec_.loads.tractions.size(); ++k) {
+      const SurfaceLoadSpec& load = spec_.loads.tractions[k];
+      const auto it = mesh_.boundary_faces.find(load.boundary);
+      if (it == mesh_.boundary_faces.end() || it->second.empty()) {
+        std::string names;
+        for (const auto& [name, faces] : mesh_.boundary_faces)
+          names += (names.empty() ? "\"" : ", \"") + name + "\"";
+        throw InputError(
+            {{"loads.tractions[" + std::to_string(k) + "].boundary", "\"" + load.boundary + "\"",
+              "a boundary of the mesh: one of " + (names.empty() ? std::string("(none)") : names)}});
+      }
+      for (const auto& [element, face] : it->second) loaded_faces_.push_back({element, face, k});
+    }
+  }
+
+  /// The surface loads at time t, one per loaded face.
+  [[nodiscard]] std::vector<FaceLoad<D>> face_loads_at(double t) const {
+    std::vector<FaceLoad<D>> out;
+    out.reserve(loaded_faces_.size());
+    for (const auto& [element, face, k] : loaded_faces_) {
+      const SurfaceLoadSpec& spec = spec_.loads.tractions[k];
+      FaceLoad<D> load;
+      load.element = element;
+      load.face = face;
+      load.follower = spec.pressure.has_value();
+      if (spec.pressure) load.pressure = (*spec.pressure)(t);
+      for (int a = 0; a < D; ++a)
+        if (const auto& component = spec.traction[static_cast<std::size_t>(a)])
+          load.traction[a] = (*component)(t);
+      out.push_back(load);
+    }
+    return out;
+  }
+
   /// The displacement of each "velocity" boundary dof over [t0, t1]: the integral of its velocity
   /// (exact for a piecewise-linear table). A later condition on the same dof overrides an earlier one.
   [[nodiscard]] std::vector<std::pair<Index, double>> prescribed_increments(double t0, double t1) const {
@@ -349,6 +388,12 @@ class ImplicitMpmSolver {
   HistoryMarks marks_;
   std::vector<Index> probe_nodes_;                                  // output.node_probes
   std::vector<std::pair<Index, const TimeFunction*>> moving_dofs_;  // "velocity" conditions (spec_'s)
+  struct LoadedFace {
+    Index element;
+    int face;
+    std::size_t load;  // index into spec_.loads.tractions
+  };
+  std::vector<LoadedFace> loaded_faces_;
   NewtonResult last_newton_;  // of the last Newton solve (its residual history)
   StepSizeControl step_size_;
 };

@@ -20,7 +20,7 @@ using json = nlohmann::json;
 constexpr const char* kFormat = "matpoint checkpoint";
 // time, step, 3 energies, momentum[3], impulse[3], min J, rms dv, grid momentum difference[3],
 // checkerboard velocity, grid rms velocity, hourglass energy
-constexpr std::size_t kSampleColumns = 21;
+constexpr std::size_t kSampleColumns = 22;
 constexpr std::size_t kBodyColumns =
     12;  // kinetic, strain, mass, momentum[3], centre-of-mass velocity[3], position[3]
 
@@ -77,7 +77,8 @@ std::vector<double> history_rows(const History& history) {
                                         s.grid_rms_velocity,
                                         s.hourglass_energy,
                                         s.friction_work,
-                                        s.dt};
+                                        s.dt,
+                                        s.plastic_work};
     out.insert(out.end(), row, row + kSampleColumns);
     for (int b = 0; b < history.body_count; ++b) {
       out.insert(out.end(), {s.body_kinetic[b], s.body_strain[b], s.body_mass[b]});
@@ -105,6 +106,7 @@ std::vector<HistorySample> history_samples(const std::vector<double>& rows, std:
     s.checkerboard_velocity = x[16], s.grid_rms_velocity = x[17], s.hourglass_energy = x[18];
     s.friction_work = x[19];
     s.dt = x[20];
+    s.plastic_work = x[21];
     for (int b = 0; b < bodies; ++b) {
       const double* y = x + kSampleColumns + kBodyColumns * static_cast<std::size_t>(b);
       s.body_kinetic.push_back(y[0]);

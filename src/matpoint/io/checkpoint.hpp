@@ -19,7 +19,7 @@ namespace matpoint {
 
 inline constexpr const char* kCheckpointFile = "checkpoint.h5";
 inline constexpr const char* kPreviousCheckpointFile = "checkpoint.previous.h5";
-inline constexpr long kCheckpointFormatVersion = 2;  // 2: particles/stress_zz (plane strain)
+inline constexpr long kCheckpointFormatVersion = 3;  // 2: particles/stress_zz (plane strain); 3: history plastic_work
 
 using PvdEntries = std::vector<std::pair<double, std::string>>;  // (time, file) of a .pvd collection
 

@@ -176,7 +176,7 @@ Spec SpecReader::read(const json& root_json) {
   read_materials(top.required("materials"));
   read_bodies(top.required("bodies"));
   read_conditions(top.optional("boundary_conditions"));
-  read_loads(Object(top.optional("loads"), {"gravity", "gravity_scale"}));
+  read_loads(Object(top.optional("loads"), {"gravity", "gravity_scale", "tractions"}));
   read_solver(Object(top.required("solver"), {"scheme",
                                               "transfer",
                                               "position_alpha",

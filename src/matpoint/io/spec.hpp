@@ -3,9 +3,9 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,7 +69,8 @@ struct MaterialSpec {
   DruckerPragerMatch match = DruckerPragerMatch::PlaneStrain;
   // von_mises (material/von_mises.hpp): initial yield stress and linear hardening modulus
   double yield_stress = 0, hardening_modulus = 0;
-  // von_mises, optional Johnson-Cook terms (B eps_p^n hardening, C ln(rate / reference rate)); B = C = 0: none
+  // von_mises, optional Johnson-Cook terms (B eps_p^n hardening, C ln(rate / reference rate));
+  // B = C = 0: none
   double jc_b = 0, jc_n = 1, jc_c = 0, jc_reference_rate = 1;
   // Rigid: the prescribed velocity of its particles, one function of time per component (zero by
   // default); a rigid material feels no stress and needs "contact" (docs/theory/contact.md).
@@ -155,8 +156,19 @@ struct MeshSpec {
   std::string file;            // a Gmsh .msh file instead of the structured mesh
 };
 
+/// loads.tractions[k] of an implicit run: a surface load on the faces of a named mesh boundary,
+/// either a pressure p(t) (normal to the boundary's current position, positive pushing into the
+/// body: a follower load) or a traction vector t(t) per unit length (area) of the boundary as meshed
+/// (fixed direction). Both act on the mesh's faces: where the body fills the mesh up to that boundary.
+struct SurfaceLoadSpec {
+  std::string boundary;
+  std::optional<TimeFunction> pressure;
+  std::array<std::optional<TimeFunction>, 3> traction;  // components (absent: 0) when no pressure
+};
+
 struct LoadSpec {
   Triple gravity{};
+  std::vector<SurfaceLoadSpec> tractions;  // implicit runs only
   // loads.gravity_scale: the gravity is gravity_scale(t) * gravity (e.g. switched off after a
   // while: Aulisa & Capodaglio's Test B). The explicit step takes it at the step's start, the
   // implicit one at its end (the time of the equilibrium it solves).

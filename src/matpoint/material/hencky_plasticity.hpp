@@ -13,10 +13,14 @@
 //   C_p^-1 <- F^-1 b_e F^-T,   tau = sum_A tau_A n_A (x) n_A,   sigma = tau / J
 // 2-D is plane strain (F_zz = 1; b_e and tau are 3x3, and sigma_zz is kept), 1-D uniaxial strain.
 //
-// History per particle, kPlasticStateSize = 8 doubles:
+// History per particle, kPlasticStateSize = 9 doubles:
 //   [0..5] C_p^-1 - I in the order xx, yy, zz, xy, yz, xz   (all zero: the virgin material)
 //   [6]    equivalent plastic strain (each model states its definition)
 //   [7]    yield state of the last update (YieldState: 0 elastic, 1 surface, 2 edge, 3 apex)
+//   [8]    plastic work per unit reference volume: the sum over the returns of tau_A Delta eps_p,A
+//          (returned principal Kirchhoff stress times the principal plastic log-strain increment
+//          eps^trial - eps_e: backward Euler of the dissipation rate tau : d_p), so that
+//          K + U + plastic work - W_ext is what the solver conserves
 #pragma once
 
 #include <Eigen/Eigenvalues>
@@ -36,9 +40,10 @@ using Tensor4 = Eigen::Matrix<double, 9, 9>;
 /// the Mohr-Coulomb pyramid, or the apex of MC / DP.
 enum class YieldState { Elastic = 0, Surface = 1, Edge = 2, Apex = 3 };
 
-inline constexpr int kPlasticStateSize = 8;
+inline constexpr int kPlasticStateSize = 9;
 inline constexpr int kEquivalentPlasticStrain = 6;
 inline constexpr int kYieldState = 7;
+inline constexpr int kPlasticWork = 8;
 
 /// Isotropic Hencky elasticity in principal space: tau_A = D_AB eps_B, D_AB = lambda + 2 mu delta_AB.
 struct HenckyElasticity {
@@ -158,6 +163,7 @@ Mat3 hencky_plastic_update(const HenckyElasticity& elastic, const Yield& yield, 
     const Mat3 F_inv = F.inverse();
     store_plastic_metric(F_inv * b_e * F_inv.transpose(), state);
     state[kEquivalentPlasticStrain] += r.plastic_strain_increment;
+    state[kPlasticWork] += r.tau.dot(trial.eps - eps_e);
   }
   return from_principal(r.tau, trial.axes);
 }

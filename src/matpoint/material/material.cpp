@@ -201,6 +201,16 @@ double strain_energy(const std::vector<Material>& materials, const ParticleSet<D
   return energy;
 }
 
+template <int D>
+double plastic_work(const ParticleSet<D>& particles) {
+  if (particles.state_stride < kPlasticStateSize) return 0.0;
+  const auto stride = static_cast<std::size_t>(particles.state_stride);
+  double work = 0.0;
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    if (particles.plastic(p)) work += particles.volume0[p] * particles.state[p * stride + kPlasticWork];
+  return work;
+}
+
 template void set_state_layout<1>(const std::vector<Material>&, ParticleSet<1>&);
 template void set_state_layout<2>(const std::vector<Material>&, ParticleSet<2>&);
 template void set_state_layout<3>(const std::vector<Material>&, ParticleSet<3>&);
@@ -219,5 +229,8 @@ template long update_stress<3>(const std::vector<Material>&, ParticleSet<3>&, co
 template double strain_energy<1>(const std::vector<Material>&, const ParticleSet<1>&, int);
 template double strain_energy<2>(const std::vector<Material>&, const ParticleSet<2>&, int);
 template double strain_energy<3>(const std::vector<Material>&, const ParticleSet<3>&, int);
+template double plastic_work<1>(const ParticleSet<1>&);
+template double plastic_work<2>(const ParticleSet<2>&);
+template double plastic_work<3>(const ParticleSet<3>&);
 
 }  // namespace matpoint

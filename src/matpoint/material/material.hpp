@@ -67,4 +67,9 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
 template <int D>
 double strain_energy(const std::vector<Material>& materials, const ParticleSet<D>& particles, int body = -1);
 
+/// Sum over the particles of plastic materials of V0_p times their plastic work per unit reference
+/// volume (material/hencky_plasticity.hpp, state [kPlasticWork]): the energy the return maps removed.
+template <int D>
+double plastic_work(const ParticleSet<D>& particles);
+
 }  // namespace matpoint

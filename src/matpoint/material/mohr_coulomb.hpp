@@ -4,6 +4,8 @@
 //   f = k tau_1 - tau_3 - sigma_c,  k = (1 + sin phi)/(1 - sin phi),  sigma_c = 2 c cos phi/(1 - sin phi)
 //   g = m tau_1 - tau_3,            m = (1 + sin psi)/(1 - sin psi)   (psi = phi: associated)
 //   apex tau_apex = sigma_c/(k - 1) (1, 1, 1) = c cot phi (1, 1, 1)
+// phi = 0 is Tresca (k = 1, sigma_c = 2 c: tau_1 - tau_3 <= 2 c, c the undrained shear strength):
+// the two edge lines are then parallel to the hydrostatic axis and there is no apex.
 // The return region (plane, edge tau_1 = tau_2, edge tau_2 = tau_3, apex) is chosen in closed form
 // from the trial stress; each return is exact (no iteration), and its derivative is the consistent
 // tangent in the principal frame (plane: D - D b a^T D / a^T D b; edge: r_l n^T D / n . r_l; apex: 0).
@@ -31,7 +33,7 @@ namespace matpoint {
 
 struct MohrCoulombYield {
   double cohesion;        // c
-  double friction_angle;  // phi (radians), 0 < phi < pi/2
+  double friction_angle;  // phi (radians), 0 <= phi < pi/2 (0: Tresca)
   double dilation_angle;  // psi (radians), 0 <= psi <= phi
   double residual_cohesion = 0.0, residual_friction_angle = 0.0;
   double softening_strain = 0.0;                                    // eps_s; 0: no softening
@@ -44,7 +46,7 @@ struct MohrCoulombYield {
     return {cohesion + s * (residual_cohesion - cohesion),
             friction_angle + s * (residual_friction_angle - friction_angle)};
   }
-  /// The apex c cot(phi) (mean stress of the returned apex state).
+  /// The apex c cot(phi) (mean stress of the returned apex state; infinite for Tresca, phi = 0).
   [[nodiscard]] double apex(double eps_p = 0.0) const {
     const auto [c, phi] = strength(eps_p);
     return c / std::tan(phi);
@@ -73,26 +75,31 @@ struct MohrCoulombYield {
     const Vec3 a2(0.0, k, -1.0), b2(0.0, m, -1.0), a3(k, -1.0, 0.0), b3(m, -1.0, 0.0);
     const Vec3 r_p2 = D * b2 / a2.dot(D * b2), r_p3 = D * b3 / a3.dot(D * b3);
     const Vec3 r_l1(1.0, 1.0, k), r_l2(1.0, k, k);  // edge directions tau_1 = tau_2, tau_2 = tau_3
-    const Vec3 apex = Vec3::Constant(sigma_c / (k - 1.0));
+    // A point of each edge line: the apex where both meet (phi > 0), or for Tresca (k = 1, no apex)
+    // (0, 0, -sigma_c) on tau_1 = tau_2 and (sigma_c, 0, 0) on tau_2 = tau_3.
+    const bool has_apex = k > 1.0;
+    const Vec3 apex = Vec3::Constant(has_apex ? sigma_c / (k - 1.0) : 0.0);
+    const Vec3 e1 = has_apex ? apex : Vec3(0.0, 0.0, -sigma_c);
+    const Vec3 e2 = has_apex ? apex : Vec3(sigma_c, 0.0, 0.0);
     const Vec3 n_12 = r_p.cross(r_l1), n_13 = r_p.cross(r_l2);
     const Vec3 n2 = r_p.cross(r_p2), n3 = r_p.cross(r_p3);
-    const Vec3 d = trial - apex;
-    const double t1 = n2.dot(d) / n2.dot(r_l1), t2 = n3.dot(d) / n3.dot(r_l2);
+    const Vec3 d1 = trial - e1, d2 = trial - e2;
+    const double t1 = n2.dot(d1) / n2.dot(r_l1), t2 = n3.dot(d2) / n3.dot(r_l2);
 
     // The extraction's "apex if t1 > 0 or t2 > 0" sends some trial states of the edge-1 region to
     // the apex (t2 > 0 there means nothing); the brute-force closest-point test found it. An edge
     // return goes to the apex when its own parameter passes it (equivalently: t1 > 0 and t2 > 0).
-    if (n_12.dot(d) < 0.0) {
-      r.state = t1 > 0.0 ? YieldState::Apex : YieldState::Edge;
-      r.tau = apex + std::min(t1, 0.0) * r_l1;
+    if (n_12.dot(d1) < 0.0) {
+      r.state = has_apex && t1 > 0.0 ? YieldState::Apex : YieldState::Edge;
+      r.tau = e1 + (has_apex ? std::min(t1, 0.0) : t1) * r_l1;
       r.tangent = r_l1 * (D * n2).transpose() / n2.dot(r_l1);
-    } else if (n_13.dot(d) <= 0.0) {
+    } else if (n_13.dot(d2) <= 0.0) {
       r.state = YieldState::Surface;
       r.tau = trial - f * r_p;
       r.tangent = D - (D * b) * (D * a).transpose() / a.dot(D * b);
     } else {
-      r.state = t2 > 0.0 ? YieldState::Apex : YieldState::Edge;
-      r.tau = apex + std::min(t2, 0.0) * r_l2;
+      r.state = has_apex && t2 > 0.0 ? YieldState::Apex : YieldState::Edge;
+      r.tau = e2 + (has_apex ? std::min(t2, 0.0) : t2) * r_l2;
       r.tangent = r_l2 * (D * n3).transpose() / n3.dot(r_l2);
     }
     if (r.state == YieldState::Apex) r.tangent.setZero();

@@ -31,11 +31,17 @@ struct VonMisesYield {
 
   [[nodiscard]] bool johnson_cook() const { return jc_b != 0.0 || jc_c != 0.0; }
 
+  /// The rate-free flow stress sigma_y + H eps_p + B eps_p^n.
+  [[nodiscard]] double hardening(double eps_p) const {
+    return yield_stress + hardening_modulus * eps_p + (jc_b != 0.0 ? jc_b * std::pow(eps_p, jc_n) : 0.0);
+  }
+  /// Its slope H + n B eps_p^(n - 1).
+  [[nodiscard]] double hardening_slope(double eps_p) const {
+    return hardening_modulus + (jc_b != 0.0 ? jc_b * jc_n * std::pow(eps_p, jc_n - 1.0) : 0.0);
+  }
   /// sigma_f at plastic strain eps_p and plastic strain rate `rate` (rate terms off when rate <= 0).
   [[nodiscard]] double flow_stress(double eps_p, double rate = 0.0) const {
-    const double hardening =
-        yield_stress + hardening_modulus * eps_p + (jc_b != 0.0 ? jc_b * std::pow(eps_p, jc_n) : 0.0);
-    return hardening * rate_factor(rate);
+    return hardening(eps_p) * rate_factor(rate);
   }
   [[nodiscard]] double yield_function(const Vec3& tau, double eps_p = 0.0) const {
     return std::sqrt(1.5) * (tau.array() - tau.mean()).matrix().norm() - flow_stress(eps_p);
@@ -77,12 +83,8 @@ struct VonMisesYield {
     };
     const auto slope = [&](double g) {  // d sigma_f / d dgamma at g > 0
       const double e = eps_p + g, rate = dt > 0.0 ? g / dt : 0.0;
-      const double hardening =
-          yield_stress + hardening_modulus * e + (jc_b != 0.0 ? jc_b * std::pow(e, jc_n) : 0.0);
-      const double d_hardening =
-          hardening_modulus + (jc_b != 0.0 ? jc_b * jc_n * std::pow(e, jc_n - 1.0) : 0.0);
       const double d_rate = jc_c != 0.0 && rate > jc_reference_rate ? jc_c / g : 0.0;
-      return d_hardening * rate_factor(rate) + hardening * d_rate;
+      return hardening_slope(e) * rate_factor(rate) + hardening(e) * d_rate;
     };
     double low = 0.0, high = q / (3.0 * G), g = 0.5 * high;
     for (int iteration = 0; iteration < 100; ++iteration) {

@@ -1,7 +1,7 @@
 // The energy-growth guard: an explicit run that goes unstable gains energy from nowhere, often
 // long before a particle leaves the grid or det F turns negative (Nairn's bar with cpGIMP and
 // FMPM(16) at C = 0.2 grew its kinetic energy 25-fold and exited 0). The guard watches the energy
-// balance B(t) = K + U + D - W_ext (kinetic, strain, friction work, external work), which an
+// balance B(t) = K + U + D - W_ext (kinetic, strain, friction and plastic work, external work), which an
 // accurate run keeps at B(0), and stops the run (exit 3) when it rises by more than
 // `solver.max_energy_growth` times the energy scale
 //   E_scale(t) = max(K(0) + U(0), max |W_ext| over the output times so far and now),
@@ -39,7 +39,8 @@ class EnergyGuard {
     if (history.samples.empty()) return;
     const auto& first = history.samples.front();
     scale_.initial = first.kinetic_energy + first.strain_energy;
-    balance0_ = balance(first.kinetic_energy, first.strain_energy, first.friction_work, first.external_work);
+    balance0_ = balance(first.kinetic_energy, first.strain_energy, first.friction_work + first.plastic_work,
+                        first.external_work);
     for (const auto& s : history.samples)
       scale_.external_work = std::max(scale_.external_work, std::abs(s.external_work));
   }
@@ -52,7 +53,7 @@ class EnergyGuard {
     if (!max_growth_ || (!recorded && sim.step % kInterval != 0)) return;
     const double scale = std::max(scale_.value(), std::abs(sim.external_work));
     const double b = balance(kinetic_energy(sim.particles), strain_energy<D>(sim.materials, sim.particles),
-                             sim.friction_work, sim.external_work);
+                             sim.friction_work + plastic_work<D>(sim.particles), sim.external_work);
     if (!(scale > 0.0)) return;  // nothing given, nothing received: nothing to compare with
     const double growth = (b - balance0_) / scale;
     if (growth <= *max_growth_ && std::isfinite(b)) return;
@@ -64,8 +65,9 @@ class EnergyGuard {
   }
 
  private:
-  static double balance(double kinetic, double strain, double friction, double external) {
-    return kinetic + strain + friction - external;
+  /// dissipated: friction and plastic work.
+  static double balance(double kinetic, double strain, double dissipated, double external) {
+    return kinetic + strain + dissipated - external;
   }
   template <int D>
   static double kinetic_energy(const ParticleSet<D>& ps) {

@@ -108,6 +108,7 @@ HistorySample history_sample(const Simulation<D>& sim, int body_count, const std
   s.strain_energy = d.strain_energy;
   s.external_work = sim.external_work;
   s.friction_work = sim.friction_work;
+  s.plastic_work = plastic_work<D>(sim.particles);
   s.momentum = pad<D>(d.momentum);
   s.external_impulse = pad<D>(sim.external_impulse);
   s.min_jacobian = d.min_jacobian;

@@ -34,6 +34,7 @@ nlohmann::json energies_json(const HistorySample& s, int dim) {
           {"total_energy", s.kinetic_energy + s.strain_energy},
           {"external_work", s.external_work},
           {"friction_work", s.friction_work},
+          {"plastic_work", s.plastic_work},
           {"momentum", std::vector<double>(s.momentum.begin(), s.momentum.begin() + dim)}};
 }
 

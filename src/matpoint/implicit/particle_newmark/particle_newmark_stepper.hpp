@@ -74,6 +74,7 @@ struct StepReport {
   Index lost_particles = 0;       // particles outside the mesh (the step is refused, A22)
   double assembly_seconds = 0.0;  // residual + Jacobian assembly (the linear solver keeps its own times)
   double boundary_work = 0.0;     // work of the moving Dirichlet conditions on the body (trapezoidal)
+  double load_work = 0.0;         // work of the surface loads (trapezoidal)
   [[nodiscard]] bool ok() const { return lost_particles == 0 && newton.converged(); }
 };
 
@@ -116,6 +117,12 @@ class ParticleNewmarkStepper {
   /// Dirichlet dofs stay at 0.
   void set_prescribed(std::vector<std::pair<Index, double>> prescribed) {
     prescribed_ = std::move(prescribed);
+  }
+  /// The surface loads of the next step at its end (the equilibrium Newton solves) and at its start
+  /// (for the trapezoidal work; the grid is reset, so both act on the faces as meshed plus u~).
+  void set_face_loads(std::vector<FaceLoad<D>> at_end, std::vector<FaceLoad<D>> at_start) {
+    loads_end_ = std::move(at_end);
+    loads_start_ = std::move(at_start);
   }
   /// The last converged reaction of each moving dof (for the boundary work; a checkpoint keeps it).
   [[nodiscard]] const std::map<Index, double>& reactions() const { return reaction_; }
@@ -175,6 +182,7 @@ class ParticleNewmarkStepper {
   Eigen::VectorXd last_increment_;
   std::vector<std::pair<Index, double>> prescribed_;
   std::map<Index, double> reaction_;  // the last converged reaction of each moving dof
+  std::vector<FaceLoad<D>> loads_end_, loads_start_;
 };
 
 template <class E, class Material>
@@ -304,6 +312,8 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   data.options.receding_in_gradient = options_.receding_in_gradient;
   data.options.small_strain = options_.small_strain;
   data.options.dt = dt;
+  data.face_loads = loads_end_;
+  data.face_loads_at_start = loads_start_;
   system_.setup(std::move(data));
 
   // u~ = 0 (§6) but at moving Dirichlet dofs, which keep their value (identity rows, zero residual).
@@ -319,6 +329,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
       newton_solve(timed_assembly, system_.assembly().pattern_version(), *solver_, u, options_.newton);
   if (report.newton.converged()) {
     report.boundary_work = boundary_work(u);
+    report.load_work = system_.surface_load_work(u);
     commit(particles, state, u, dt);
     last_increment_ = std::move(u);
   }

@@ -3,6 +3,8 @@
 // blocks
 //   - one per active element: the particles' residual (20)-(25) plus the soft stiffness (26) when
 //     C_E > 0, Jacobian by forward-mode AD (ad_jacobian.hpp);
+//   - one per loaded boundary face of an active element: the surface load (surface_load.hpp), its
+//     load stiffness by AD for a follower pressure;
 //   - one per dof of the nodes in I_ib: the lumped-mass equation (27) summed over the node's inactive
 //     elements (linear and diagonal, so the Jacobian is the node mass itself);
 // assembled by the generic SparseAssembly; Dirichlet dofs are identity rows. Fixed during the
@@ -19,6 +21,7 @@
 #include "matpoint/implicit/particle_newmark/particle_residual.hpp"
 #include "matpoint/implicit/particle_newmark/soft_stiffness.hpp"
 #include "matpoint/implicit/sparse_assembly.hpp"
+#include "matpoint/implicit/surface_load.hpp"
 #include "matpoint/mesh/mesh.hpp"
 
 namespace matpoint::implicit {
@@ -27,6 +30,7 @@ template <class E, class Material>
 class ParticleNewmarkSystem {
  public:
   static constexpr int kDim = E::kDim, kNodes = E::kNodes, kDofs = kNodes * kDim;
+  static constexpr int kFaceDofs = E::kNodesPerFace * kDim;
 
   /// What one step fixes. q has one block per active element (in set.active_elements order);
   /// soft_stiffness[k] = mu C_E of active element k (0: none); receding[k]: C_c per face of active
@@ -40,6 +44,8 @@ class ParticleNewmarkSystem {
     std::vector<double> soft_stiffness;
     std::vector<FaceCoefficients<E>> receding;
     std::span<const char> dirichlet;
+    std::vector<FaceLoad<kDim>> face_loads;  // at the step's end; faces of inactive elements are skipped
+    std::vector<FaceLoad<kDim>> face_loads_at_start;  // the same faces at the step's start (the work)
     ParticleResidualOptions options;
     int gauss_points_per_direction = 3;  // soft stiffness and lumped mass (the paper's 3 x 3 for Q9)
   };
@@ -55,6 +61,10 @@ class ParticleNewmarkSystem {
   [[nodiscard]] const SparseAssembly& assembly() const { return assembly_; }
   [[nodiscard]] Index dof_count() const { return assembly_.dof_count(); }
 
+  /// The surface loads' work over the converged step u, (f(t_n, 0) + f(t_{n+1}, u)) / 2 . u: the
+  /// start's load on the reset grid, the end's on the converged displacement (trapezoidal).
+  [[nodiscard]] double surface_load_work(const Eigen::VectorXd& u) const;
+
   /// The residual and Jacobian (row-major) of active element k alone at its dofs' values u_e.
   void element_residual_and_jacobian(Index k, const double* u_e, double* r, double* K) const;
   void element_residual(Index k, const double* u_e, double* r) const;
@@ -65,6 +75,13 @@ class ParticleNewmarkSystem {
 
   StepData data_;
   Index active_ = 0;
+  /// The external nodal forces of `loads` (parallel to loads_'s faces) at u, node-major.
+  [[nodiscard]] Eigen::VectorXd surface_load_forces(const std::vector<FaceLoad<kDim>>& loads,
+                                                    const Eigen::VectorXd& u) const;
+
+  std::vector<FaceLoad<kDim>> loads_;            // the face blocks, after the active elements
+  std::vector<FaceLoad<kDim>> loads_start_;      // the same faces at the step's start
+  std::vector<FaceNodes<E>> load_nodes_;         // their nodes in x~
   std::vector<GaussGeometry<E>> soft_geometry_;  // per active element with soft stiffness
   std::vector<double> mass_dof_;                 // per inactive-node block (one dof): its lumped mass
   SparseAssembly assembly_;
@@ -88,6 +105,27 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
     if (data_.soft_stiffness[static_cast<std::size_t>(k)] > 0.0)
       soft_geometry_[static_cast<std::size_t>(k)] = gauss_geometry<E>(
           gather_nodes<E>(data_.reference_nodes, mesh.element_nodes(e)), data_.gauss_points_per_direction);
+  }
+  // Surface loads on the faces of active elements (elsewhere the body is not at the boundary).
+  loads_.clear();
+  loads_start_.clear();
+  load_nodes_.clear();
+  for (std::size_t l = 0; l < data_.face_loads.size(); ++l) {
+    const FaceLoad<kDim>& load = data_.face_loads[l];
+    if (!set.element_active(load.element)) continue;
+    const auto nodes = mesh.element_nodes(load.element);
+    FaceNodes<E> x;
+    int a = 0;
+    const auto face = E::faces()[static_cast<std::size_t>(load.face)];  // a copy: faces() returns by value
+    for (const int local : face) {
+      const Index node = nodes[static_cast<std::size_t>(local)];
+      x.row(a++) = data_.reference_nodes[static_cast<std::size_t>(node)].transpose();
+      for (int i = 0; i < kDim; ++i) dofs.push_back(node * kDim + i);
+    }
+    offsets.push_back(static_cast<Index>(dofs.size()));
+    loads_.push_back(load);
+    loads_start_.push_back(l < data_.face_loads_at_start.size() ? data_.face_loads_at_start[l] : load);
+    load_nodes_.push_back(x);
   }
   // Inactive elements: the mass equations (27) of their I_ib nodes, summed per node (a row-sum
   // lumped mass), one 1 x 1 block per dof: the pattern of these rows is the diagonal alone (blocks
@@ -134,6 +172,39 @@ void ParticleNewmarkSystem<E, Material>::active_residual(Index k, const S* u, S*
 }
 
 template <class E, class Material>
+double ParticleNewmarkSystem<E, Material>::surface_load_work(const Eigen::VectorXd& u) const {
+  if (loads_.empty()) return 0.0;
+  return 0.5 *
+         (surface_load_forces(loads_start_, Eigen::VectorXd::Zero(u.size())) + surface_load_forces(loads_, u))
+             .dot(u);
+}
+
+template <class E, class Material>
+Eigen::VectorXd ParticleNewmarkSystem<E, Material>::surface_load_forces(
+    const std::vector<FaceLoad<kDim>>& loads, const Eigen::VectorXd& u) const {
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(dof_count());
+  for (std::size_t f = 0; f < loads.size(); ++f) {
+    const auto nodes = data_.mesh->element_nodes(loads[f].element);
+    std::array<Index, kFaceDofs> dofs;
+    std::array<double, kFaceDofs> u_f, r_f{};
+    int a = 0;
+    const auto face = E::faces()[static_cast<std::size_t>(loads[f].face)];
+    for (const int local : face) {
+      for (int i = 0; i < kDim; ++i) {
+        const Index dof = nodes[static_cast<std::size_t>(local)] * kDim + i;
+        dofs[static_cast<std::size_t>(a * kDim + i)] = dof;
+        u_f[static_cast<std::size_t>(a * kDim + i)] = u[dof];
+      }
+      ++a;
+    }
+    add_surface_load_residual<E>(load_nodes_[f], loads[f], u_f.data(), r_f.data());
+    for (int i = 0; i < kFaceDofs; ++i)
+      force[dofs[static_cast<std::size_t>(i)]] -= r_f[static_cast<std::size_t>(i)];
+  }
+  return force;
+}
+
+template <class E, class Material>
 void ParticleNewmarkSystem<E, Material>::element_residual_and_jacobian(Index k, const double* u_e, double* r,
                                                                        double* K) const {
   residual_and_jacobian<kDofs>(
@@ -161,8 +232,23 @@ bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eige
             element_residual(b, u_e.data(), r);
           return;
         }
+        const auto face_count = static_cast<Index>(loads_.size());
+        if (b < active_ + face_count) {
+          const auto f = static_cast<std::size_t>(b - active_);
+          std::array<double, kFaceDofs> u_f;
+          for (int i = 0; i < kFaceDofs; ++i)
+            u_f[static_cast<std::size_t>(i)] = u[dofs[static_cast<std::size_t>(i)]];
+          const auto residual = [&](const auto* uf, auto* rf) {
+            add_surface_load_residual<E>(load_nodes_[f], loads_[f], uf, rf);
+          };
+          if (k != nullptr)
+            residual_and_jacobian<kFaceDofs>(u_f.data(), residual, r, k);
+          else
+            residual_only<kFaceDofs>(u_f.data(), residual, r);
+          return;
+        }
         // (27): r = m u for one dof of an I_ib node, dr/du = m.
-        const double m = mass_dof_[static_cast<std::size_t>(b - active_)];
+        const double m = mass_dof_[static_cast<std::size_t>(b - active_ - face_count)];
         r[0] = m * u[dofs[0]];
         if (k != nullptr) k[0] = m;
       },

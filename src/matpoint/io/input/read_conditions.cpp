@@ -73,15 +73,9 @@ VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
     type.fail("\"fixed\", \"slip\" or \"velocity\" (an implicit run's conditions act on mesh boundaries)");
   set_if(out.kind, kind);
   read_condition_velocity(c, out);
-  const auto boundary = c.required("boundary").string();
-  if (boundary) {
+  if (const auto boundary = c.required("boundary").string()) {
     out.boundary = *boundary;
-    if (spec_.mesh.file.empty()) {
-      std::vector<std::string_view> sides{"left", "right", "bottom", "top"};
-      if (dim_ == 3) sides.insert(sides.end(), {"back", "front"});
-      if (std::find(sides.begin(), sides.end(), *boundary) == sides.end())
-        c.required("boundary").fail("a side of the structured mesh: one of " + join(sides, true));
-    }
+    check_mesh_boundary(c.required("boundary"), *boundary);
   }
   if (out.kind == ConditionKind::Slip) {
     const auto axis = c.required("normal").choice(kAxes);
@@ -96,6 +90,14 @@ VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
     c.optional("receding")
         .fail("no receding on a \"velocity\" boundary (the correction is for walls at rest)");
   return out;
+}
+
+void SpecReader::check_mesh_boundary(const Value& v, const std::string& name) const {
+  if (!spec_.mesh.file.empty()) return;
+  std::vector<std::string_view> sides{"left", "right", "bottom", "top"};
+  if (dim_ == 3) sides.insert(sides.end(), {"back", "front"});
+  if (std::find(sides.begin(), sides.end(), name) == sides.end())
+    v.fail("a side of the structured mesh: one of " + join(sides, true));
 }
 
 VelocityConditionSpec SpecReader::read_condition(const Object& c) const {

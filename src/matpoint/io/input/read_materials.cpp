@@ -109,13 +109,15 @@ void SpecReader::read_plasticity(const Object& m, MaterialModel model, MaterialS
   }
 }
 
-/// Mohr-Coulomb strength: c >= 0, 0 < phi < 90 deg, 0 <= psi <= phi, optional linear softening
-/// {"cohesion": c_r, "friction_angle": phi_r, "plastic_strain": eps_s} with c_r <= c,
-/// psi <= phi_r <= phi.
+/// Mohr-Coulomb strength: c >= 0, 0 <= phi < 90 deg (phi = 0: Tresca, then c > 0), 0 <= psi <= phi,
+/// optional linear softening {"cohesion": c_r, "friction_angle": phi_r, "plastic_strain": eps_s}
+/// with c_r <= c, psi <= phi_r <= phi.
 void SpecReader::read_friction(const Object& m, MaterialSpec& out) {
   set_if(out.cohesion, m.required("cohesion").number(kNonNegative));
-  const auto phi = m.required("friction_angle").number({0, 90, true, true});
+  const auto phi = m.required("friction_angle").number({0, 90, false, true});
   set_if(out.friction_angle, phi);
+  if (phi && *phi == 0.0 && out.cohesion == 0.0)
+    m.required("cohesion").fail("c > 0 when friction_angle is 0 (Tresca: no strength otherwise)");
   const Value psi_value = m.optional("dilation_angle");
   const auto psi = psi_value.number(phi ? Bounds{0, *phi, false, false} : kNonNegative);
   set_if(out.dilation_angle, psi);
@@ -124,9 +126,10 @@ void SpecReader::read_friction(const Object& m, MaterialSpec& out) {
   const Object soft(m.optional("softening"), {"cohesion", "friction_angle", "plastic_strain"});
   if (!m.has("softening") || !soft.valid()) return;
   set_if(out.residual_cohesion, soft.required("cohesion").number({0, out.cohesion, false, false}));
-  set_if(out.residual_friction_angle, soft.required("friction_angle")
-                                          .number({std::max(out.dilation_angle, 0.0), out.friction_angle,
-                                                   out.dilation_angle == 0.0, false}));
+  set_if(out.residual_friction_angle,
+         soft.required("friction_angle")
+             .number({std::max(out.dilation_angle, 0.0), out.friction_angle,
+                      out.dilation_angle == 0.0 && out.friction_angle > 0.0, false}));
   set_if(out.softening_strain, soft.required("plastic_strain").number(kPositive));
 }
 
@@ -145,7 +148,7 @@ void SpecReader::read_johnson_cook(const Object& jc, MaterialSpec& out) {
 void SpecReader::read_tension_cutoff(const Object& m, MaterialSpec& out) {
   const double apex = out.friction_angle > 0
                           ? out.cohesion / std::tan(out.friction_angle * 3.14159265358979323846 / 180)
-                          : 0.0;
+                          : std::numeric_limits<double>::infinity();  // Tresca: no apex
   std::ostringstream bound;
   bound << "a stress in [0, c cot(phi)) = [0, " << apex
         << ") (the apex of the Mohr-Coulomb pyramid; a cut-off at or "

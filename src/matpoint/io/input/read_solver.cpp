@@ -29,6 +29,46 @@ void SpecReader::read_loads(const Object& loads) {
   if (scale.present())
     set_if(spec_.loads.gravity_scale,
            read_time_function(scale, "a number or {\"table\": [[t, scale], ...]}: the factor on gravity"));
+  const Value tractions = loads.optional("tractions");
+  if (!tractions.present()) return;
+  if (!spec_.mesh.enabled) {
+    tractions.fail(
+        "no tractions unless the input has a mesh (surface loads act on the faces of an implicit "
+        "run's mesh boundaries)");
+    return;
+  }
+  for (const auto& item :
+       tractions.elements("an array of {\"boundary\", \"pressure\" or \"traction\"} objects"))
+    spec_.loads.tractions.push_back(read_surface_load(Object(item, {"boundary", "pressure", "traction"})));
+}
+
+SurfaceLoadSpec SpecReader::read_surface_load(const Object& o) const {
+  SurfaceLoadSpec out;
+  if (!o.valid()) return out;
+  if (const auto boundary = o.required("boundary").string()) {
+    out.boundary = *boundary;
+    check_mesh_boundary(o.required("boundary"), *boundary);
+  }
+  const Value pressure = o.optional("pressure"), traction = o.optional("traction");
+  if (pressure.present() && traction.present()) {
+    traction.fail("no traction with a pressure (one surface load per entry)");
+  } else if (pressure.present()) {
+    out.pressure = read_time_function(
+        pressure, "a number or {\"table\": [[t, p], ...]}: the pressure, positive pushing into the body");
+  } else if (traction.present()) {
+    const std::string expected = "an array of " + std::to_string(dim_) +
+                                 " entries, each a number or {\"table\": [[t, value], ...]}: the traction "
+                                 "per unit length (area) of the boundary";
+    if (!traction.get().is_array() || traction.get().size() != static_cast<std::size_t>(dim_)) {
+      traction.fail(expected);
+      return out;
+    }
+    for (std::size_t a = 0; a < traction.get().size(); ++a)
+      out.traction[a] = read_time_function(traction.element(a), expected);
+  } else {
+    o.missing("pressure", "a pressure (a number or a table) or a \"traction\" vector");
+  }
+  return out;
 }
 
 void SpecReader::read_solver(const Object& s) {

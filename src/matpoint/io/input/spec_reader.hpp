@@ -122,6 +122,8 @@ class SpecReader {
   VelocityConditionSpec read_condition(const Object& c) const;
 
   VelocityConditionSpec read_mesh_condition(const Object& c) const;
+  /// A structured mesh's boundaries are its sides ("left", ...); a Gmsh mesh's are checked at set-up.
+  void check_mesh_boundary(const Value& v, const std::string& name) const;
 
   /// "one_sided": true on a fixed or slip face (slip with the face's own normal), not with FMPM/XPIC.
   void read_condition_velocity(const Object& c, VelocityConditionSpec& out) const;
@@ -150,6 +152,8 @@ class SpecReader {
   // --- loads, solver, output, checks ---
 
   void read_loads(const Object& loads);
+  /// loads.tractions[k]: {"boundary", "pressure": p(t)} or {"boundary", "traction": [t_x(t), ...]}.
+  [[nodiscard]] SurfaceLoadSpec read_surface_load(const Object& o) const;
 
   void read_solver(const Object& s);
 
