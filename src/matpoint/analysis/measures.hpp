@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 30> kMeasures{{
+inline constexpr std::array<MeasureInfo, 33> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |B(t) - B(0)| / E_s, B = K + U + D - W_ext (kinetic, strain energy, friction "
      "work of contact, external work), E_s = max(K(0) + U(0), max |W_ext| over the run): the energy given or "
@@ -54,6 +54,20 @@ inline constexpr std::array<MeasureInfo, 30> kMeasures{{
      "displacement of the first probe (the disk's centre particle), x = g_x t^2 / 3 the rigid disk rolling "
      "without slip (eq. (49)) with g_x the input's gravity along x (the plane's axes) "
      "(examples/implicit-rolling-disk)"},
+    {"rolling_acceleration_ratio",
+     "fitted_com_displacement_acceleration_x / (2/3 g_x): the acceleration of the bodies' centre of mass "
+     "against a rigid solid disk rolling without slip from rest down a plane along x, a = 2/3 g sin(theta) "
+     "(Iaconeta 2017 eqs. (64)-(66)), g_x = g sin(theta) the input's gravity along x (the plane's axes); 1 "
+     "when rolling, 1.5 when sliding without friction (examples/implicit-rolling-disk-incline)"},
+    {"rolling_final_displacement_error",
+     "(d(t_end) - g_x t_end^2 / 3) / (g_x t_end^2 / 3): the signed relative error of the x displacement d of "
+     "the bodies' centre of mass at the last output against the disk rolling without slip (Iaconeta 2017 eq. "
+     "(66) in the plane's axes; g_x as rolling_acceleration_ratio)"},
+    {"rolling_displacement_error_norm",
+     "Iaconeta 2017 eq. (67): sqrt(sum over the output times of (u(t) - u_num(t))^2) in m, u = (1/3) g sin "
+     "theta cos theta t^2 the horizontal displacement of the disk rolling without slip (eq. (66)), u_num = d "
+     "cos theta, d the x displacement of the bodies' centre of mass, theta from the input's gravity (tan "
+     "theta = g_x / -g_y); it grows with the number of output times (the paper does not state its sampling)"},
     {"node_probe_final_uy",
      "implicit runs: the y displacement in the last step of the mesh node of the first output.node_probes "
      "entry, "

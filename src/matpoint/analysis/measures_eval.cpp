@@ -111,18 +111,20 @@ double fitted_com_acceleration_x(const History& h) {
   return (n * stv - st * sv) / (n * stt - st * st);
 }
 
+/// The x of the centre of mass of all bodies.
+double com_x(const HistorySample& s) {
+  double mass = 0.0, moment = 0.0;
+  for (std::size_t b = 0; b < s.body_mass.size(); ++b) {
+    mass += s.body_mass[b];
+    moment += s.body_mass[b] * s.body_com_position[b][0];
+  }
+  return moment / mass;
+}
+
 /// Least-squares a of x(t) - x(0) = a t^2 / 2 through every output, x the centre of mass of all
 /// bodies (a body starting from rest; the position integrates out the velocity's oscillations).
 double fitted_com_displacement_acceleration_x(const History& h) {
   if (h.samples.size() < 3) return kNaN;
-  const auto com_x = [](const HistorySample& s) {
-    double mass = 0.0, moment = 0.0;
-    for (std::size_t b = 0; b < s.body_mass.size(); ++b) {
-      mass += s.body_mass[b];
-      moment += s.body_mass[b] * s.body_com_position[b][0];
-    }
-    return moment / mass;
-  };
   const double x0 = com_x(h.samples.front()), t0 = h.samples.front().time;
   double sqq = 0, sqx = 0;
   for (const auto& s : h.samples) {
@@ -149,6 +151,38 @@ double rolling_disk_mean_relative_error(const Spec& spec, const History& h) {
     ++count;
   }
   return count > 0 ? sum / static_cast<double>(count) : kNaN;
+}
+
+/// A rigid solid disk rolling without slip from rest down a plane along x (gravity (g_x, g_y) =
+/// g (sin theta, -cos theta) in the plane's axes): d(t) = g_x t^2 / 3 (Iaconeta 2017 eqs. (64)-(66)).
+double rolling_displacement(const Spec& spec, double t) { return spec.loads.gravity[0] * t * t / 3.0; }
+
+/// The fitted centre-of-mass acceleration over the rolling one, 2/3 g_x.
+double rolling_acceleration_ratio(const Spec& spec, const History& h) {
+  return fitted_com_displacement_acceleration_x(h) / (2.0 / 3.0 * spec.loads.gravity[0]);
+}
+
+/// (d(t_end) - d_exact(t_end)) / d_exact(t_end), d the centre of mass's x displacement.
+double rolling_final_displacement_error(const Spec& spec, const History& h) {
+  if (h.samples.size() < 2) return kNaN;
+  const double t = h.samples.back().time - h.samples.front().time;
+  const double exact = rolling_displacement(spec, t);
+  return (com_x(h.samples.back()) - com_x(h.samples.front()) - exact) / exact;
+}
+
+/// Iaconeta 2017 eq. (67) over the output times: sqrt(sum (u - u_num)^2), u and u_num the
+/// horizontal components (eq. (66): the plane's x times cos theta, cos theta = -g_y / |g|).
+double rolling_displacement_error_norm(const Spec& spec, const History& h) {
+  if (h.samples.size() < 2 || h.dim < 2) return kNaN;
+  const double gx = spec.loads.gravity[0], gy = spec.loads.gravity[1];
+  const double cos_theta = -gy / std::hypot(gx, gy);
+  const double x0 = com_x(h.samples.front()), t0 = h.samples.front().time;
+  double sum = 0.0;
+  for (const auto& s : h.samples) {
+    const double e = (rolling_displacement(spec, s.time - t0) - (com_x(s) - x0)) * cos_theta;
+    sum += e * e;
+  }
+  return std::sqrt(sum);
 }
 
 /// The free vibration of the first probe after gravity is switched off (Aulisa & Capodaglio Test B,
@@ -255,6 +289,9 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
   if (name == "fitted_com_displacement_acceleration_x")
     return fitted_com_displacement_acceleration_x(history);
   if (name == "rolling_disk_mean_relative_error") return rolling_disk_mean_relative_error(spec, history);
+  if (name == "rolling_acceleration_ratio") return rolling_acceleration_ratio(spec, history);
+  if (name == "rolling_final_displacement_error") return rolling_final_displacement_error(spec, history);
+  if (name == "rolling_displacement_error_norm") return rolling_displacement_error_norm(spec, history);
   if (name == "node_probe_final_uy") {  // the first output.node_probes node, last row (implicit runs)
     if (spec.output.node_probes.empty() || history.samples.empty()) return kNaN;
     const auto column = solver_column(history, "node_" + spec.output.node_probes[0].name + "_uy");

@@ -170,7 +170,7 @@ Spec SpecReader::read(const json& root_json) {
     top.optional("grid").fail("no grid with a mesh (an implicit run's particles are seeded on its mesh)");
   else if (top.has("mesh"))
     read_mesh(
-        Object(top.required("mesh"), {"element", "min", "max", "cells", "ratio", "refine", "file", "dim"}));
+        Object(top.required("mesh"), {"element", "min", "max", "cells", "ratio", "diagonal", "refine", "file", "dim"}));
   else
     read_grid(Object(top.required("grid"), {"dim", "min", "max", "cell_size"}));
   read_materials(top.required("materials"));

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "matpoint/mesh/triangle_pattern.hpp"
+
 namespace matpoint {
 
 using Triple = std::array<double, 3>;  // unused trailing components are zero
@@ -113,6 +115,8 @@ struct BodySpec {
   double layer_growth = 1.14;  // f: each layer 1/f as thick, f times as many particles
   double core_height = 0;      // H0, the beam's uniform core (box min/max: the beam)
   bool gauss_points = false;  // particles at the 2 x 2 (x 2) Gauss points of each cell (particles_per_cell 2)
+  // placement "gauss" on a structured T3 mesh: 3 particles per triangle, the cells split as the mesh's
+  std::optional<mesh::TrianglePattern> triangle_points;
 };
 
 enum class ConditionKind { Fixed, Slip, Velocity, MovingWall };
@@ -144,8 +148,9 @@ struct VelocityConditionSpec {
 };
 
 /// The element mesh of an implicit run (mesh/): a structured rectangle or box, graded per axis and
-/// refined `refine` times (Aulisa & Capodaglio's level J), or a Gmsh .msh file.
-enum class MeshElement { Q4, Q9, Hex8, FromFile };
+/// refined `refine` times (Aulisa & Capodaglio's level J), or a Gmsh .msh file. T3: the Q4 cells
+/// split into triangles as `diagonal` says.
+enum class MeshElement { Q4, Q9, Hex8, T3, FromFile };
 struct MeshSpec {
   bool enabled = false;
   MeshElement element = MeshElement::Q9;
@@ -154,6 +159,7 @@ struct MeshSpec {
   Triple ratio{1, 1, 1};       // geometric growth of the element size along each axis
   int refine = 0;              // uniform midpoint refinements
   std::string file;            // a Gmsh .msh file instead of the structured mesh
+  mesh::TrianglePattern diagonal = mesh::TrianglePattern::Alternating;  // T3: how the cells are split
 };
 
 /// loads.tractions[k] of an implicit run: a surface load on the faces of a named mesh boundary,

@@ -1,4 +1,4 @@
-// Structured rectangle and box meshes (structured_mesh.hpp).
+// Structured rectangle (Q4, Q9, T3) and box (Hex8) meshes (structured_mesh.hpp).
 #include "matpoint/mesh/structured_mesh.hpp"
 
 #include <cmath>
@@ -118,6 +118,51 @@ Mesh<E::kDim> structured(const std::array<AxisSpacing, E::kDim>& axes) {
   return mesh;
 }
 
+/// The local edge of triangle `t` (cell-corner ids) lying on the cell side (axis, sign), or -1:
+/// T3 edge k joins its nodes k and k + 1 (mod 3).
+int triangle_edge_on_side(const std::array<int, 3>& t, int axis, int sign) {
+  const double at = sign < 0 ? 0.0 : 1.0;
+  for (int k = 0; k < 3; ++k) {
+    const auto& a = kCellCorner[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])];
+    const auto& b = kCellCorner[static_cast<std::size_t>(t[static_cast<std::size_t>((k + 1) % 3)])];
+    if (a[static_cast<std::size_t>(axis)] == at && b[static_cast<std::size_t>(axis)] == at) return k;
+  }
+  return -1;
+}
+
+/// Structured T3 mesh: the Q4 lattice's nodes (numbered as structured<Q4>), then for the crossed
+/// pattern one node per cell centre (cell order); each cell's triangles (cell_triangles) in cell
+/// order, x fastest.
+Mesh<2> structured_triangles(const AxisSpacing& x, const AxisSpacing& y, TrianglePattern pattern) {
+  Mesh<2> mesh = structured<Q4>({x, y});  // nodes, side node sets; its elements are replaced
+  mesh.shape = ElementShape::T3;
+  mesh.nodes_per_element = T3::kNodes;
+  mesh.connectivity.clear();
+  mesh.boundary_faces.clear();
+  const Index nx = x.cells(), ny = y.cells();
+  const Index lattice_nodes = (nx + 1) * (ny + 1);
+  for (Index j = 0; j < ny; ++j)
+    for (Index i = 0; i < nx; ++i) {
+      const std::array<Index, 5> corner{j * (nx + 1) + i, j * (nx + 1) + i + 1, (j + 1) * (nx + 1) + i + 1,
+                                        (j + 1) * (nx + 1) + i, lattice_nodes + j * nx + i};
+      if (pattern == TrianglePattern::Crossed)
+        mesh.nodes.push_back(
+            Vec<2>(0.5 * (x.breaks[i] + x.breaks[i + 1]), 0.5 * (y.breaks[j] + y.breaks[j + 1])));
+      for (const auto& t : cell_triangles(pattern, i, j)) {
+        const Index e = mesh.element_count();
+        for (int c : t) mesh.connectivity.push_back(corner[static_cast<std::size_t>(c)]);
+        const std::array<std::array<bool, 2>, 2> on_side{{{i == 0, i == nx - 1}, {j == 0, j == ny - 1}}};
+        for (int axis = 0; axis < 2; ++axis)
+          for (int high = 0; high < 2; ++high) {
+            if (!on_side[static_cast<std::size_t>(axis)][static_cast<std::size_t>(high)]) continue;
+            const int edge = triangle_edge_on_side(t, axis, high == 1 ? 1 : -1);
+            if (edge >= 0) mesh.boundary_faces[kSides[axis][high]].push_back({e, edge});
+          }
+      }
+    }
+  return mesh;
+}
+
 }  // namespace
 
 AxisSpacing AxisSpacing::uniform(double start, double end, int cells) {
@@ -163,11 +208,13 @@ AxisSpacing AxisSpacing::refined(int levels) const {
   return s;
 }
 
-Mesh<2> structured_rectangle(ElementShape shape, const AxisSpacing& x, const AxisSpacing& y) {
+Mesh<2> structured_rectangle(ElementShape shape, const AxisSpacing& x, const AxisSpacing& y,
+                             TrianglePattern pattern) {
   if (shape == ElementShape::Q4) return structured<Q4>({x, y});
   if (shape == ElementShape::Q9) return structured<Q9>({x, y});
+  if (shape == ElementShape::T3) return structured_triangles(x, y, pattern);
   throw std::invalid_argument(std::string("structured_rectangle: element ") + shape_name(shape) +
-                              " is not a quadrilateral (q4 or q9 expected)");
+                              " is not structured (q4, q9 or t3 expected)");
 }
 
 Mesh<3> structured_box(const AxisSpacing& x, const AxisSpacing& y, const AxisSpacing& z) {

@@ -1,4 +1,4 @@
-// Structured rectangle (Q4, Q9) and box (Hex8) meshes with graded spacing per direction, as the
+// Structured rectangle (Q4, Q9, T3) and box (Hex8) meshes with graded spacing per direction, as the
 // background grids of Aulisa & Capodaglio §6.2 (Test A: 20 x 4 QUAD9 graded towards the plane,
 // layer heights bottom -> top 0.867209 * 1.25^k; Test B: 2 x 2 QUAD9 on a unit box). Named sides:
 // "left"/"right" (x), "bottom"/"top" (y), "back"/"front" (z), each as a node set and as boundary
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "matpoint/mesh/mesh.hpp"
+#include "matpoint/mesh/triangle_pattern.hpp"
 
 namespace matpoint::mesh {
 
@@ -30,9 +31,11 @@ struct AxisSpacing {
   AxisSpacing refined(int levels) const;
 };
 
-/// Structured Q4 or Q9 rectangle mesh on x.breaks x y.breaks. Throws std::invalid_argument for
-/// another shape.
-Mesh<2> structured_rectangle(ElementShape shape, const AxisSpacing& x, const AxisSpacing& y);
+/// Structured Q4, Q9 or T3 rectangle mesh on x.breaks x y.breaks; T3: each Q4 cell split into
+/// triangles as `pattern` says (triangle_pattern.hpp), the crossed pattern's centre nodes numbered
+/// after the lattice's, cell by cell. Throws std::invalid_argument for another shape.
+Mesh<2> structured_rectangle(ElementShape shape, const AxisSpacing& x, const AxisSpacing& y,
+                             TrianglePattern pattern = TrianglePattern::Alternating);
 
 /// Structured Hex8 box mesh on x.breaks x y.breaks x z.breaks.
 Mesh<3> structured_box(const AxisSpacing& x, const AxisSpacing& y, const AxisSpacing& z);

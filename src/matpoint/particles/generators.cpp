@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "matpoint/mesh/triangle_pattern.hpp"
 #include "matpoint/particles/graded_generators.hpp"
 
 namespace matpoint {
@@ -90,6 +91,35 @@ std::size_t add_graded(const BodySpec& body, int body_index, const MaterialSpec&
   return g.position.size();
 }
 
+/// bodies[].placement "gauss" on a structured T3 mesh (Iaconeta 2017 §5.2: three material points
+/// per triangle): each triangle of each grid cell, split as the mesh splits it (mesh/triangle_pattern.hpp),
+/// gets the points of the symmetric 3-point rule, barycentric (2/3, 1/6, 1/6) and its permutations
+/// (exact for quadratics; Zienkiewicz & Taylor vol. 1, Table 9.3), each with a third of the
+/// triangle's area; the points outside the body's shape are left out.
+void add_triangle_points(const BodySpec& body, int body_index, const MaterialSpec& material,
+                         const Grid<2>& grid, const std::array<int, 2>& first, const std::array<int, 2>& last,
+                         ParticleSet<2>& particles) {
+  const mesh::TrianglePattern pattern = *body.triangle_points;
+  // a third of a triangle's area: half a cell (rising, falling, alternating) or a quarter (crossed)
+  const double volume = grid.h[0] * grid.h[1] / (pattern == mesh::TrianglePattern::Crossed ? 12.0 : 6.0);
+  const double side = std::sqrt(volume);
+  for (int j = first[1]; j <= last[1]; ++j)
+    for (int i = first[0]; i <= last[0]; ++i)
+      for (const auto& t : mesh::cell_triangles(pattern, i, j))
+        for (int k = 0; k < 3; ++k) {
+          Vec<2> x = grid.origin;
+          for (int c = 0; c < 3; ++c) {
+            const auto& corner = mesh::kCellCorner[static_cast<std::size_t>(t[static_cast<std::size_t>(c)])];
+            const double weight = c == k ? 2.0 / 3.0 : 1.0 / 6.0;
+            x[0] += weight * (i + corner[0]) * grid.h[0];
+            x[1] += weight * (j + corner[1]) * grid.h[1];
+          }
+          if (shape_contains<2>(body, x))
+            particles.add(x, initial_velocity<2>(body, x), material.density * volume, volume,
+                          Vec<2>(side, side), body.material, body_index);
+        }
+}
+
 }  // namespace
 
 template <int D>
@@ -115,23 +145,17 @@ bool shape_contains(const BodySpec& body, const Vec<D>& x) {
   return false;
 }
 
+namespace {
+
+/// Particles at the centres of ppc^D equal sub-cells of every grid cell in [first, last] (or at the
+/// cell's 2 x 2 (x 2) Gauss points: bodies[].placement "gauss"), those inside the body's shape.
 template <int D>
-std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material,
-                          const Grid<D>& grid, ParticleSet<D>& particles) {
-  Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
-  bounding_box<D>(body, lo, hi);
-  std::array<int, D> first{}, last{};
-  for (int a = 0; a < D; ++a) {
-    first[a] = std::max(0, static_cast<int>(std::floor((lo[a] - grid.origin[a]) / grid.h[a])));
-    last[a] = std::min(grid.cells[a] - 1, static_cast<int>(std::floor((hi[a] - grid.origin[a]) / grid.h[a])));
-  }
-  if constexpr (D == 2)
-    if (body.shape == BodyShape::GradedDisk || body.shape == BodyShape::GradedBeam)
-      return add_graded(body, body_index, material, particles);
+void add_lattice_points(const BodySpec& body, int body_index, const MaterialSpec& material,
+                        const Grid<D>& grid, const std::array<int, D>& first, const std::array<int, D>& last,
+                        ParticleSet<D>& particles) {
   const int ppc = body.particles_per_cell;
   const Vec<D> sub = grid.h / ppc;
   const double volume = sub.prod();
-  const std::size_t before = particles.size();
   // The offset of sub-cell s in its cell: the sub-cell centre (s + 1/2) h / ppc, or the 2-point
   // Gauss-Legendre abscissa (1 -+ 1/sqrt(3)) h / 2 (bodies[].placement "gauss").
   const auto offset = [&](int s, int a) {
@@ -156,6 +180,31 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
     int a = 0;
     while (a < D && ++cell[a] > last[a]) cell[a] = first[a], ++a;
     if (a == D) break;
+  }
+}
+
+}  // namespace
+
+template <int D>
+std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material,
+                          const Grid<D>& grid, ParticleSet<D>& particles) {
+  Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
+  bounding_box<D>(body, lo, hi);
+  std::array<int, D> first{}, last{};
+  for (int a = 0; a < D; ++a) {
+    first[a] = std::max(0, static_cast<int>(std::floor((lo[a] - grid.origin[a]) / grid.h[a])));
+    last[a] = std::min(grid.cells[a] - 1, static_cast<int>(std::floor((hi[a] - grid.origin[a]) / grid.h[a])));
+  }
+  const std::size_t before = particles.size();
+  if constexpr (D == 2) {
+    if (body.shape == BodyShape::GradedDisk || body.shape == BodyShape::GradedBeam)
+      return add_graded(body, body_index, material, particles);
+    if (body.triangle_points)
+      add_triangle_points(body, body_index, material, grid, first, last, particles);
+    else
+      add_lattice_points<D>(body, body_index, material, grid, first, last, particles);
+  } else {
+    add_lattice_points<D>(body, body_index, material, grid, first, last, particles);
   }
   if (body.noise_amplitude > 0.0) {  // in generation order: the same seed gives the same noise
     std::mt19937 rng(body.noise_seed);

@@ -100,21 +100,32 @@ RunResult run_dim(const Spec& spec, const RunOptions& options) {
 }
 
 /// The input's mesh: structured (graded per axis) or read from a Gmsh file, refined mesh.refine times.
+/// A structured T3 mesh is refined on its axes before the cells are split (each cell into 2^refine
+/// x 2^refine cells, then into triangles by mesh.diagonal), so that its triangles stay the halves
+/// (quarters) of the run's grid cells, where bodies[].placement "gauss" puts the particles.
 template <int D>
 mesh::Mesh<D> build_mesh(const MeshSpec& m) {
   mesh::Mesh<D> out;
   if (!m.file.empty()) {
     out = mesh::read_gmsh<D>(m.file, "mesh.file");
   } else {
+    const bool triangles = m.element == MeshElement::T3;
     std::array<mesh::AxisSpacing, 3> axes;
-    for (int a = 0; a < D; ++a)
-      axes[static_cast<std::size_t>(a)] =
+    for (int a = 0; a < D; ++a) {
+      auto& axis = axes[static_cast<std::size_t>(a)];
+      axis =
           mesh::AxisSpacing::geometric(m.min[a], m.max[a], m.cells[static_cast<std::size_t>(a)], m.ratio[a]);
-    if constexpr (D == 2)
-      out = mesh::structured_rectangle(
-          m.element == MeshElement::Q4 ? mesh::ElementShape::Q4 : mesh::ElementShape::Q9, axes[0], axes[1]);
-    else
+      if (triangles) axis = axis.refined(m.refine);
+    }
+    if constexpr (D == 2) {
+      const auto shape = triangles                      ? mesh::ElementShape::T3
+                         : m.element == MeshElement::Q4 ? mesh::ElementShape::Q4
+                                                        : mesh::ElementShape::Q9;
+      out = mesh::structured_rectangle(shape, axes[0], axes[1], m.diagonal);
+    } else {
       out = mesh::structured_box(axes[0], axes[1], axes[2]);
+    }
+    if (triangles) return out;
   }
   return m.refine > 0 ? mesh::refine(out, m.refine) : out;
 }

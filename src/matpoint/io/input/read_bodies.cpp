@@ -54,7 +54,9 @@ BodySpec SpecReader::read_body(const Value& v, std::size_t index) {
 
 /// placement: "uniform" (the default: particles at the centres of ppc^D equal sub-cells) or "gauss"
 /// (at the 2 x 2 (x 2) Gauss points of each cell, each with a quarter (eighth) of the cell's
-/// volume: a finite-element quadrature, as Iaconeta 2017 §4.1 places its material points).
+/// volume: a finite-element quadrature, as Iaconeta 2017 §4.1 places its material points; on a
+/// structured T3 mesh at the 3 points of the degree-2 rule of each triangle, each with a third of
+/// its area, Iaconeta 2017 §5.2's three material points per cell).
 void SpecReader::read_placement(const Object& b, BodySpec& out) const {
   const Value placement = b.optional("placement");
   const auto text = placement.string();
@@ -63,11 +65,40 @@ void SpecReader::read_placement(const Object& b, BodySpec& out) const {
     placement.fail("\"uniform\" or \"gauss\"");
     return;
   }
+  const MeshSpec& mesh = spec_.mesh;
+  if (*text == "gauss" && mesh.enabled && mesh.element == MeshElement::T3) {
+    read_triangle_placement(b, out);
+    return;
+  }
   out.gauss_points = *text == "gauss";
   if (out.gauss_points && out.particles_per_cell != 2)
     placement.fail("\"uniform\" unless particles_per_cell is 2 (\"gauss\" places 2 per direction)");
   if (out.gauss_points && (out.shape == BodyShape::GradedDisk || out.shape == BodyShape::GradedBeam))
     placement.fail("\"uniform\" (a graded body places its own particles)");
+}
+
+/// placement "gauss" on a structured T3 mesh: three particles per triangle, in the triangles of the
+/// grid cells split as mesh.diagonal splits them (particles/generators.cpp), so the cells must be
+/// the run's grid cells (no grading).
+void SpecReader::read_triangle_placement(const Object& b, BodySpec& out) const {
+  const Value placement = b.optional("placement");
+  if (b.has("particles_per_cell")) {
+    b.optional("particles_per_cell")
+        .fail("no particles_per_cell with placement \"gauss\" on a \"t3\" mesh (3 per triangle)");
+    return;
+  }
+  for (int a = 0; a < dim_; ++a)
+    if (spec_.mesh.ratio[a] != 1.0) {
+      placement.fail(
+          "\"uniform\" on a graded mesh (\"gauss\" on a \"t3\" mesh needs mesh.ratio 1: its "
+          "triangles must be halves of equal cells)");
+      return;
+    }
+  if (out.shape == BodyShape::GradedDisk || out.shape == BodyShape::GradedBeam) {
+    placement.fail("\"uniform\" (a graded body places its own particles)");
+    return;
+  }
+  out.triangle_points = spec_.mesh.diagonal;
 }
 
 /// {"k0": K0 >= 0, "surface": height of the free surface}: an initial geostatic stress, held by

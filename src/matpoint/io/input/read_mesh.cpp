@@ -1,4 +1,5 @@
-// The input reader, section mesh (implicit runs; docs/input.md): a structured mesh or a Gmsh file.
+// The input reader, section mesh (implicit runs; docs/input.md): a structured mesh (Q4, Q9, T3,
+// Hex8) or a Gmsh file.
 // The run's `grid` (particle seeding and the inside-the-domain checks of bodies) is the mesh's
 // bounding box with the mean element size of the refined mesh.
 #include <cmath>
@@ -35,6 +36,7 @@ void SpecReader::read_mesh(const Object& m) {
     if (!element) return;
     out.element = *element;
     dim_ = out.element == MeshElement::Hex8 ? 3 : 2;
+    read_mesh_diagonal(m);
     const auto lo = m.required("min").vector(dim_);
     const auto hi = m.required("max").vector(dim_);
     const Value cells = m.required("cells");
@@ -64,6 +66,21 @@ void SpecReader::read_mesh(const Object& m) {
   grid_ok_ = true;
 }
 
+/// mesh.diagonal: how a structured T3 mesh splits its cells (mesh/triangle_pattern.hpp); only
+/// with element "t3". The default, "alternating", prefers neither diagonal direction
+/// (examples/implicit-rolling-disk-incline/README.md: what a single direction does to a rolling disk).
+void SpecReader::read_mesh_diagonal(const Object& m) {
+  MeshSpec& out = spec_.mesh;
+  out.diagonal = mesh::TrianglePattern::Alternating;
+  if (!m.has("diagonal")) return;
+  if (out.element != MeshElement::T3) {
+    m.optional("diagonal")
+        .fail("no diagonal unless mesh.element is \"t3\" (it splits the cells into triangles)");
+    return;
+  }
+  set_if(out.diagonal, m.optional("diagonal").choice(kTrianglePatterns));
+}
+
 /// mesh.file: read here already, so that a missing or broken file is an input error (exit 2)
 /// naming the file; its dimension decides the run's.
 void SpecReader::read_mesh_file(const Object& m) {
@@ -71,7 +88,7 @@ void SpecReader::read_mesh_file(const Object& m) {
   out.element = MeshElement::FromFile;
   const auto file = m.required("file").string();
   const auto dim = m.required("dim").integer(2, 3);
-  for (const char* key : {"element", "min", "max", "cells", "ratio"})
+  for (const char* key : {"element", "min", "max", "cells", "ratio", "diagonal"})
     if (m.has(key))
       m.optional(key).fail(std::string("no ") + key + " with mesh.file (the file gives the mesh)");
   if (!file || !dim) return;

@@ -25,6 +25,7 @@ class SpecReader {
   /// mesh (implicit runs): a structured mesh or a Gmsh file; fills the grid from it (read_mesh.cpp).
   void read_mesh(const Object& mesh);
   void read_mesh_file(const Object& mesh);
+  void read_mesh_diagonal(const Object& mesh);
 
   /// A number (the same in every direction) or a vector, all > 0.
   std::optional<Triple> read_cell_size(const Value& v) const;
@@ -89,6 +90,7 @@ class SpecReader {
   void read_graded_disk(const Object& s, BodySpec& out) const;
   void read_graded_beam(const Object& s, BodySpec& out) const;
   void read_placement(const Object& b, BodySpec& out) const;
+  void read_triangle_placement(const Object& b, BodySpec& out) const;
 
   static void read_polygon(const Object& s, BodySpec& out);
 
