@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "matpoint/implicit/implicit_mpm_solver.hpp"
 #include "matpoint/io/input.hpp"
@@ -117,20 +118,17 @@ void check_follower(const std::string& mesh_json, const std::string& conditions,
 }
 
 TEST(SurfaceLoads, FollowerPressureGivesCauchyStressOnTheDeformedFace2D) {
-  check_follower<mesh::Q4>(
-      R"({"element": "q4", "min": [0, 0], "max": [2, 1], "cells": [4, 2]})",
-      R"({"type": "slip", "boundary": "bottom", "normal": "y"},
-                              {"type": "slip", "boundary": "left", "normal": "x"})",
-      "top", 1,
-      mesh::structured_rectangle(mesh::ElementShape::Q4, mesh::AxisSpacing::uniform(0, 2, 4),
-                                 mesh::AxisSpacing::uniform(0, 1, 2)));
-  check_follower<mesh::Q4>(
-      R"({"element": "q4", "min": [0, 0], "max": [2, 1], "cells": [4, 2]})",
-      R"({"type": "slip", "boundary": "bottom", "normal": "y"},
-                              {"type": "slip", "boundary": "left", "normal": "x"})",
-      "right", 0,
-      mesh::structured_rectangle(mesh::ElementShape::Q4, mesh::AxisSpacing::uniform(0, 2, 4),
-                                 mesh::AxisSpacing::uniform(0, 1, 2)));
+  // The top (normal y) and the right side (normal x) of the block between smooth walls.
+  for (const auto& [side, axis] : {std::pair<const char*, int>{"top", 1}, {"right", 0}}) {
+    SCOPED_TRACE(side);
+    check_follower<mesh::Q4>(
+        R"({"element": "q4", "min": [0, 0], "max": [2, 1], "cells": [4, 2]})",
+        R"({"type": "slip", "boundary": "bottom", "normal": "y"},
+           {"type": "slip", "boundary": "left", "normal": "x"})",
+        side, axis,
+        mesh::structured_rectangle(mesh::ElementShape::Q4, mesh::AxisSpacing::uniform(0, 2, 4),
+                                   mesh::AxisSpacing::uniform(0, 1, 2)));
+  }
 }
 
 TEST(SurfaceLoads, FollowerPressureGivesCauchyStressOnTheDeformedFace3D) {
