@@ -85,6 +85,16 @@ TEST(PlasticTangent, MohrCoulombEveryRegionMatchesDifferences) {
   }
 }
 
+// Tresca (phi = psi = 0: no apex): the plane and both edges (strains of 2 % are all beyond the
+// yield strain 2 c / E = 0.6 %, so no sample stays elastic).
+TEST(PlasticTangent, TrescaMatchesDifferences) {
+  for (const bool plane : {false, true}) {
+    const Tally t = check_against_differences(MohrCoulombYield{5e3, 0.0, 0.0}, 0.02, plane, 29);
+    for (int s = 1; s < 3; ++s) EXPECT_GT(t.checked[static_cast<std::size_t>(s)], 0) << "state " << s;
+    EXPECT_EQ(t.checked[static_cast<std::size_t>(YieldState::Apex)], 0);
+  }
+}
+
 TEST(PlasticTangent, MohrCoulombWithTensionCutoffMatchesDifferences) {
   MohrCoulombYield yield{5e3, 25 * kDeg, 5 * kDeg};
   yield.tension_cutoff = 3e3;
