@@ -66,18 +66,26 @@ ParticleNewmarkOptions<D> stepper_options(const Spec& spec) {
   return o;
 }
 
+/// The non-empty entry `name` of a mesh's named sets (node sets, boundary faces); throws InputError
+/// at `path` listing the mesh's names when there is none.
+template <class Sets>
+const typename Sets::mapped_type& named_boundary(const Sets& sets, const std::string& name,
+                                                 const std::string& path) {
+  const auto it = sets.find(name);
+  if (it == sets.end() || it->second.empty()) {
+    std::string names;
+    for (const auto& entry : sets) names += (names.empty() ? "\"" : ", \"") + entry.first + "\"";
+    throw InputError({{path, "\"" + name + "\"",
+                       "a boundary of the mesh: one of " + (names.empty() ? std::string("(none)") : names)}});
+  }
+  return it->second;
+}
+
 /// The nodes of a named boundary; throws InputError naming the condition when the mesh has none.
 template <int D>
 const std::vector<Index>& boundary_nodes(const mesh::Mesh<D>& m, const VelocityConditionSpec& c,
                                          std::size_t k) {
-  const auto it = m.node_sets.find(c.boundary);
-  if (it == m.node_sets.end() || it->second.empty()) {
-    std::string names;
-    for (const auto& [name, nodes] : m.node_sets) names += (names.empty() ? "\"" : ", \"") + name + "\"";
-    throw InputError({{"boundary_conditions[" + std::to_string(k) + "].boundary", "\"" + c.boundary + "\"",
-                       "a boundary of the mesh: one of " + (names.empty() ? std::string("(none)") : names)}});
-  }
-  return it->second;
+  return named_boundary(m.node_sets, c.boundary, "boundary_conditions[" + std::to_string(k) + "].boundary");
 }
 
 template <class E>
@@ -311,17 +319,9 @@ class ImplicitMpmSolver {
   /// InputError naming the load when the mesh has no such boundary.
   void collect_loaded_faces() {
     for (std::size_t k = 0; k < spec_.loads.tractions.size(); ++k) {
-      const SurfaceLoadSpec& load = spec_.loads.tractions[k];
-      const auto it = mesh_.boundary_faces.find(load.boundary);
-      if (it == mesh_.boundary_faces.end() || it->second.empty()) {
-        std::string names;
-        for (const auto& [name, faces] : mesh_.boundary_faces)
-          names += (names.empty() ? "\"" : ", \"") + name + "\"";
-        throw InputError(
-            {{"loads.tractions[" + std::to_string(k) + "].boundary", "\"" + load.boundary + "\"",
-              "a boundary of the mesh: one of " + (names.empty() ? std::string("(none)") : names)}});
-      }
-      for (const auto& [element, face] : it->second) loaded_faces_.push_back({element, face, k});
+      const auto& faces = named_boundary(mesh_.boundary_faces, spec_.loads.tractions[k].boundary,
+                                         "loads.tractions[" + std::to_string(k) + "].boundary");
+      for (const auto& [element, face] : faces) loaded_faces_.push_back({element, face, k});
     }
   }
 

@@ -204,10 +204,13 @@ double strain_energy(const std::vector<Material>& materials, const ParticleSet<D
 template <int D>
 double plastic_work(const ParticleSet<D>& particles) {
   if (particles.state_stride < kPlasticStateSize) return 0.0;
-  const auto stride = static_cast<std::size_t>(particles.state_stride);
+  const auto stride = static_cast<std::ptrdiff_t>(particles.state_stride);
+  const auto n = static_cast<std::ptrdiff_t>(particles.size());
   double work = 0.0;
-  for (std::size_t p = 0; p < particles.size(); ++p)
-    if (particles.plastic(p)) work += particles.volume0[p] * particles.state[p * stride + kPlasticWork];
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(+ : work)
+  for (std::ptrdiff_t p = 0; p < n; ++p)
+    if (particles.plastic(static_cast<std::size_t>(p)))
+      work += particles.volume0[p] * particles.state[p * stride + kPlasticWork];
   return work;
 }
 

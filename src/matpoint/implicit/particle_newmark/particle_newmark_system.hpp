@@ -79,11 +79,12 @@ class ParticleNewmarkSystem {
   [[nodiscard]] Eigen::VectorXd surface_load_forces(const std::vector<FaceLoad<kDim>>& loads,
                                                     const Eigen::VectorXd& u) const;
 
-  std::vector<FaceLoad<kDim>> loads_;            // the face blocks, after the active elements
-  std::vector<FaceLoad<kDim>> loads_start_;      // the same faces at the step's start
-  std::vector<FaceNodes<E>> load_nodes_;         // their nodes in x~
-  std::vector<GaussGeometry<E>> soft_geometry_;  // per active element with soft stiffness
-  std::vector<double> mass_dof_;                 // per inactive-node block (one dof): its lumped mass
+  std::vector<FaceLoad<kDim>> loads_;                    // the face blocks, after the active elements
+  std::vector<FaceLoad<kDim>> loads_start_;              // the same faces at the step's start
+  std::vector<FaceNodes<E>> load_nodes_;                 // their nodes in x~
+  std::vector<std::array<Index, kFaceDofs>> load_dofs_;  // and their dofs (the blocks' dof lists)
+  std::vector<GaussGeometry<E>> soft_geometry_;          // per active element with soft stiffness
+  std::vector<double> mass_dof_;                         // per inactive-node block (one dof): its lumped mass
   SparseAssembly assembly_;
   std::vector<Index> offsets_, dofs_;  // the blocks of the current pattern
   std::vector<char> dirichlet_;
@@ -110,22 +111,27 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
   loads_.clear();
   loads_start_.clear();
   load_nodes_.clear();
+  load_dofs_.clear();
   for (std::size_t l = 0; l < data_.face_loads.size(); ++l) {
     const FaceLoad<kDim>& load = data_.face_loads[l];
     if (!set.element_active(load.element)) continue;
     const auto nodes = mesh.element_nodes(load.element);
     FaceNodes<E> x;
+    std::array<Index, kFaceDofs> face_dofs;
     int a = 0;
     const auto face = E::faces()[static_cast<std::size_t>(load.face)];  // a copy: faces() returns by value
     for (const int local : face) {
       const Index node = nodes[static_cast<std::size_t>(local)];
-      x.row(a++) = data_.reference_nodes[static_cast<std::size_t>(node)].transpose();
-      for (int i = 0; i < kDim; ++i) dofs.push_back(node * kDim + i);
+      x.row(a) = data_.reference_nodes[static_cast<std::size_t>(node)].transpose();
+      for (int i = 0; i < kDim; ++i) face_dofs[static_cast<std::size_t>(a * kDim + i)] = node * kDim + i;
+      ++a;
     }
+    dofs.insert(dofs.end(), face_dofs.begin(), face_dofs.end());
     offsets.push_back(static_cast<Index>(dofs.size()));
     loads_.push_back(load);
     loads_start_.push_back(l < data_.face_loads_at_start.size() ? data_.face_loads_at_start[l] : load);
     load_nodes_.push_back(x);
+    load_dofs_.push_back(face_dofs);
   }
   // Inactive elements: the mass equations (27) of their I_ib nodes, summed per node (a row-sum
   // lumped mass), one 1 x 1 block per dof: the pattern of these rows is the diagonal alone (blocks
@@ -184,22 +190,11 @@ Eigen::VectorXd ParticleNewmarkSystem<E, Material>::surface_load_forces(
     const std::vector<FaceLoad<kDim>>& loads, const Eigen::VectorXd& u) const {
   Eigen::VectorXd force = Eigen::VectorXd::Zero(dof_count());
   for (std::size_t f = 0; f < loads.size(); ++f) {
-    const auto nodes = data_.mesh->element_nodes(loads[f].element);
-    std::array<Index, kFaceDofs> dofs;
+    const auto& dofs = load_dofs_[f];
     std::array<double, kFaceDofs> u_f, r_f{};
-    int a = 0;
-    const auto face = E::faces()[static_cast<std::size_t>(loads[f].face)];
-    for (const int local : face) {
-      for (int i = 0; i < kDim; ++i) {
-        const Index dof = nodes[static_cast<std::size_t>(local)] * kDim + i;
-        dofs[static_cast<std::size_t>(a * kDim + i)] = dof;
-        u_f[static_cast<std::size_t>(a * kDim + i)] = u[dof];
-      }
-      ++a;
-    }
+    for (std::size_t i = 0; i < dofs.size(); ++i) u_f[i] = u[dofs[i]];
     add_surface_load_residual<E>(load_nodes_[f], loads[f], u_f.data(), r_f.data());
-    for (int i = 0; i < kFaceDofs; ++i)
-      force[dofs[static_cast<std::size_t>(i)]] -= r_f[static_cast<std::size_t>(i)];
+    for (std::size_t i = 0; i < dofs.size(); ++i) force[dofs[i]] -= r_f[i];
   }
   return force;
 }

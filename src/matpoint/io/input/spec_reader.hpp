@@ -127,8 +127,10 @@ class SpecReader {
   /// A structured mesh's boundaries are its sides ("left", ...); a Gmsh mesh's are checked at set-up.
   void check_mesh_boundary(const Value& v, const std::string& name) const;
 
-  /// "one_sided": true on a fixed or slip face (slip with the face's own normal), not with FMPM/XPIC.
+  /// "velocity": required for type "velocity" (grid faces, boxes and mesh boundaries alike), refused
+  /// otherwise.
   void read_condition_velocity(const Object& c, VelocityConditionSpec& out) const;
+  /// "one_sided": true on a fixed or slip face (slip with the face's own normal), not with FMPM/XPIC.
   void read_one_sided(const Value& v, VelocityConditionSpec& out) const;
 
   /// One-sided conditions decide per step which nodes they hold; the FMPM/XPIC increments would need
