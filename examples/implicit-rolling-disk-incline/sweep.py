@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Iaconeta 2017 §5.2 Table 1's time-step study for the MPM row: the disk on the 60 degree
 incline at dt1 = 1e-3, dt2 = 5e-4, dt3 = 2.5e-4 s to t_end = 1 s on the paper's T3 mesh
-(h = 0.01 m), with the paper's no-slip floor (no-slip.json) and the frictionless control
+(h = 0.01 m), with the no-slip one-sided floor (no-slip.json), with --fixed also the plain
+held floor (no-slip.json without one_sided: it glues the disk), and the frictionless control
 (input.json's floor, on no-slip.json's mesh, run length and resolution; its mesh is longer so that the
 disk stays on it for 1 s). Prints per run the fitted acceleration over the rolling one
 (rolling_acceleration_ratio: 1 rolling, 1.5 sliding), the relative error of the displacement at
 t_end against rolling (rolling_final_displacement_error), eq. (67) with outputs every 0.01 s
 (rolling_displacement_error_norm, m), the wall time and Newton's iterations, beside Table 1's MPM row.
 
-    examples/implicit-rolling-disk-incline/sweep.py BUILD/matpoint [--quick] [--diagonal PATTERN]
+    examples/implicit-rolling-disk-incline/sweep.py BUILD/matpoint [--quick] [--fixed] [--diagonal PATTERN]
 
 --quick: h = 0.02 m and t_end = 0.3 s (seconds instead of minutes). README.md has the last output.
 """
@@ -35,6 +36,8 @@ def case(floor, dt, quick, diagonal):
         spec["solver"]["end_time"] = 0.3
     if diagonal:
         spec["mesh"]["diagonal"] = diagonal
+    if floor == "fixed":
+        spec["boundary_conditions"][0]["one_sided"] = False
     if floor == "slip":
         spec["boundary_conditions"] = load("input.json")["boundary_conditions"]
         h = spec["mesh"]["max"][0] / spec["mesh"]["cells"][0]
@@ -65,7 +68,8 @@ def main(argv):
     diagonal = argv[argv.index("--diagonal") + 1] if "--diagonal" in argv else None
     print(f"{'floor':8} {'dt (s)':>8} {'a / (2/3 g sin)':>15} {'u(t_end) err':>12} {'eq. (67) m':>10} "
           f"{'wall s':>7} {'Newton':>6}   Table 1 MPM: {'error m':>7} {'t_comp s':>8}")
-    for floor in ("no-slip", "slip"):
+    floors = ("no-slip", "fixed", "slip") if "--fixed" in argv else ("no-slip", "slip")
+    for floor in floors:
         for dt in (1e-3, 5e-4, 2.5e-4):
             measured, summary = run(binary, case(floor, dt, quick, diagonal))
             implicit = summary.get("implicit", {})

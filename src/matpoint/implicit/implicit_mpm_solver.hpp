@@ -127,6 +127,7 @@ class ImplicitMpmSolver {
     }
     collect_loaded_faces();
     auto options = stepper_options<D>(spec);
+    options.one_sided = one_sided_nodes(spec);
     options.gravity = gravity_at(0.0);
     options.not_fully_active = on_condition;  // A13 (b): boundary nodes count as not fully active
     stepper_.emplace(mesh_, implicit_materials(sim_), options, std::move(dirichlet), std::move(receding));
@@ -142,6 +143,30 @@ class ImplicitMpmSolver {
   Simulation<D>& sim() { return sim_; }
   [[nodiscard]] const Simulation<D>& sim() const { return sim_; }
   [[nodiscard]] const mesh::Mesh<D>& mesh() const { return mesh_; }
+
+  /// The nodes of the one-sided conditions with their walls; throws InputError for a boundary that
+  /// is not a plane at the mesh's edge (the wall needs the body on one side of it).
+  std::vector<OneSidedNode> one_sided_nodes(const Spec& spec) const {
+    std::vector<OneSidedNode> out;
+    for (std::size_t k = 0; k < spec.conditions.size(); ++k) {
+      const VelocityConditionSpec& c = spec.conditions[k];
+      if (!c.one_sided) continue;
+      const auto& nodes = boundary_nodes(mesh_, c, k);
+      const auto plane = wall_plane<D>(mesh_.nodes, nodes);
+      const std::string path = "boundary_conditions[" + std::to_string(k) + "]";
+      if (!plane)
+        throw InputError({{path + ".one_sided", "true",
+                           "false: boundary \"" + c.boundary +
+                               "\" is not a plane x_i = constant at the mesh's edge (a one-sided wall "
+                               "needs the body on one side)"}});
+      if (c.kind == ConditionKind::Slip && c.normal_axis != plane->axis)
+        throw InputError({{path + ".normal", std::string("\"") + "xyz"[c.normal_axis] + "\"",
+                           std::string("\"") + "xyz"[plane->axis] +
+                               "\", the wall's normal (a one-sided slip wall holds the normal component)"}});
+      for (Index n : nodes) out.push_back({n, *plane, c.kind == ConditionKind::Fixed});
+    }
+    return out;
+  }
   [[nodiscard]] const ImplicitTotals& totals() const { return totals_; }
   /// The last Newton solve: status and residual history (tests print its convergence).
   [[nodiscard]] const NewtonResult& last_newton() const { return last_newton_; }
@@ -166,7 +191,7 @@ class ImplicitMpmSolver {
       stepper_->set_face_loads(face_loads_at(sim_.time + done + sub), face_loads_at(sim_.time + done));
       StepReport report = stepper_->step(sim_.particles, state_, sub);
       last_newton_ = report.newton;
-      const int iterations = report.newton.iterations();
+      const int iterations = report.iterations;  // every solve of the step (one-sided walls: several)
       totals_.assembly_seconds += report.assembly_seconds;
       totals_.newton_iterations += iterations;
       totals_.max_iterations_in_a_step = std::max<long>(totals_.max_iterations_in_a_step, iterations);

@@ -31,6 +31,7 @@
 
 #include "matpoint/implicit/linear_solver.hpp"
 #include "matpoint/implicit/newton.hpp"
+#include "matpoint/implicit/one_sided_boundary.hpp"
 #include "matpoint/implicit/particle_newmark/element_flags.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_system.hpp"
 #include "matpoint/mesh/point_locator.hpp"
@@ -66,6 +67,8 @@ struct ParticleNewmarkOptions {
   bool small_strain = false;           // geometrically linear, Hooke (particle_residual.hpp)
   NewtonOptions newton;
   LinearSolverOptions linear;
+  std::vector<OneSidedNode> one_sided;  // nodes of one-sided boundaries (one_sided_boundary.hpp)
+  int max_one_sided_rounds = 10;        // Newton solves per step while the held set changes
 };
 
 struct StepReport {
@@ -75,6 +78,8 @@ struct StepReport {
   double assembly_seconds = 0.0;  // residual + Jacobian assembly (the linear solver keeps its own times)
   double boundary_work = 0.0;     // work of the moving Dirichlet conditions on the body (trapezoidal)
   double load_work = 0.0;         // work of the surface loads (trapezoidal)
+  int solves = 0;                 // Newton solves (one-sided boundaries: one per change of the held set)
+  int iterations = 0;             // Newton iterations of all of them
   [[nodiscard]] bool ok() const { return lost_particles == 0 && newton.converged(); }
 };
 
@@ -94,7 +99,8 @@ class ParticleNewmarkStepper {
         dirichlet_(std::move(dirichlet)),
         receding_(std::move(receding)),
         locator_(mesh, mesh.nodes),
-        solver_(make_linear_solver(options_.linear)) {
+        solver_(make_linear_solver(options_.linear)),
+        one_sided_(std::move(options_.one_sided), options_.max_one_sided_rounds) {
     options_.newton.components = D;
   }
 
@@ -183,6 +189,8 @@ class ParticleNewmarkStepper {
   std::vector<std::pair<Index, double>> prescribed_;
   std::map<Index, double> reaction_;  // the last converged reaction of each moving dof
   std::vector<FaceLoad<D>> loads_end_, loads_start_;
+  OneSidedBoundary<D> one_sided_;
+  std::vector<char> round_dirichlet_;  // dirichlet_ with the one-sided dofs as held this round
 };
 
 template <class E, class Material>
@@ -307,26 +315,39 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
     data.soft_stiffness[k] = mu * ce[k];
   }
   if (!receding_.empty()) data.receding = element_receding_;
-  data.dirichlet = dirichlet_;
   data.options.inertia_coefficient = options_.static_analysis ? 0.0 : c.displacement;
   data.options.receding_in_gradient = options_.receding_in_gradient;
   data.options.small_strain = options_.small_strain;
   data.options.dt = dt;
   data.face_loads = loads_end_;
   data.face_loads_at_start = loads_start_;
-  system_.setup(std::move(data));
 
-  // u~ = 0 (§6) but at moving Dirichlet dofs, which keep their value (identity rows, zero residual).
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(system_.dof_count());
-  for (const auto& [dof, value] : prescribed_) u[dof] = value;
   const auto timed_assembly = [&](const Eigen::VectorXd& x, Eigen::VectorXd& R, SparseMatrix* K) {
     const auto t0 = std::chrono::steady_clock::now();
     const bool ok = system_.assemble(x, R, K);
     report.assembly_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return ok;
   };
-  report.newton =
-      newton_solve(timed_assembly, system_.assembly().pattern_version(), *solver_, u, options_.newton);
+  if (!one_sided_.empty()) one_sided_.start_step(mesh_.nodes, particles);
+  Eigen::VectorXd u;
+  for (;;) {  // one solve, or one per change of the one-sided boundaries' held set
+    using StepData = typename ParticleNewmarkSystem<E, Material>::StepData;
+    StepData round = one_sided_.empty() ? std::move(data) : StepData(data);  // rounds > 1 re-use data
+    if (!one_sided_.empty()) round_dirichlet_ = one_sided_.dirichlet(dirichlet_);
+    round.dirichlet = one_sided_.empty() ? dirichlet_ : round_dirichlet_;  // a view: must outlive the step
+    system_.setup(std::move(round));
+    // u~ = 0 (§6) but at moving Dirichlet dofs, which keep their value (identity rows, zero residual).
+    u = Eigen::VectorXd::Zero(system_.dof_count());
+    for (const auto& [dof, value] : prescribed_) u[dof] = value;
+    report.newton =
+        newton_solve(timed_assembly, system_.assembly().pattern_version(), *solver_, u, options_.newton);
+    ++report.solves;
+    report.iterations += report.newton.iterations();
+    if (one_sided_.empty() || !report.newton.converged() || report.solves >= one_sided_.max_rounds()) break;
+    Eigen::VectorXd reaction;  // the unconstrained residual: the wall's force at the held dofs
+    system_.assemble(u, reaction, nullptr, false);
+    if (!one_sided_.update(u, reaction)) break;
+  }
   if (report.newton.converged()) {
     report.boundary_work = boundary_work(u);
     report.load_work = system_.surface_load_work(u);

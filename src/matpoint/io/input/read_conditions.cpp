@@ -27,8 +27,8 @@ void SpecReader::read_conditions(const Value& list) {
   for (const auto& item : list.elements("an array of boundary condition objects")) {
     const bool wall = item.get().is_object() && item.get().value("type", json()) == "moving_wall";
     if (spec_.mesh.enabled)
-      spec_.conditions.push_back(
-          read_mesh_condition(Object(item, {"type", "boundary", "normal", "receding", "velocity"})));
+      spec_.conditions.push_back(read_mesh_condition(
+          Object(item, {"type", "boundary", "normal", "receding", "velocity", "one_sided"})));
     else if (wall)
       spec_.conditions.push_back(read_moving_wall(
           Object(item, {"type", "axis", "position", "material", "velocity", "depth", "stretch_about"})));
@@ -62,7 +62,8 @@ VelocityConditionSpec SpecReader::read_moving_wall(const Object& c) const {
 /// A condition of an implicit run: "fixed" (every component 0), "slip" (the normal component 0) or
 /// "velocity" (the listed components move at the prescribed velocity) on the nodes of a named mesh boundary,
 /// with the receding-contact constant C_c in [0, 1] of its faces (Aulisa & Capodaglio §5, eq. (47) as
-/// corrected in extraction A3).
+/// corrected in extraction A3); "one_sided": a fixed or slip wall that only pushes
+/// (implicit/one_sided_boundary.hpp).
 VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
   VelocityConditionSpec out;
   if (!c.valid()) return out;
@@ -86,10 +87,30 @@ VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
     c.optional("normal").fail("no normal unless type is \"slip\"");
   }
   set_if(out.receding, c.optional("receding").number(kUnitInterval));
+  if (const auto one_sided = c.optional("one_sided").boolean(); one_sided && *one_sided) {
+    if (out.kind == ConditionKind::Velocity)
+      c.optional("one_sided")
+          .fail("false: one_sided only on a \"fixed\" or \"slip\" boundary (a wall at rest)");
+    out.one_sided = true;
+    check_one_sided_normal(c, out);
+  }
   if (out.kind == ConditionKind::Velocity && c.has("receding"))
     c.optional("receding")
         .fail("no receding on a \"velocity\" boundary (the correction is for walls at rest)");
   return out;
+}
+
+/// A one-sided slip wall on a side of the structured mesh holds the side's own normal component
+/// (a Gmsh boundary's plane is checked at set-up, implicit_mpm_solver.hpp).
+void SpecReader::check_one_sided_normal(const Object& c, const VelocityConditionSpec& out) const {
+  const std::string& side = out.boundary;
+  const bool known = side == "left" || side == "right" || side == "bottom" || side == "top" ||
+                     side == "back" || side == "front";
+  if (out.kind != ConditionKind::Slip || !spec_.mesh.file.empty() || !known || !c.has("normal")) return;
+  const int axis = side == "left" || side == "right" ? 0 : side == "bottom" || side == "top" ? 1 : 2;
+  if (out.normal_axis != axis)
+    c.required("normal").fail(std::string("\"") + "xyz"[axis] +
+                              "\", the side's normal (a one-sided slip wall holds its own normal component)");
 }
 
 void SpecReader::check_mesh_boundary(const Value& v, const std::string& name) const {

@@ -125,6 +125,7 @@ class SpecReader {
 
   VelocityConditionSpec read_mesh_condition(const Object& c) const;
   /// A structured mesh's boundaries are its sides ("left", ...); a Gmsh mesh's are checked at set-up.
+  void check_one_sided_normal(const Object& c, const VelocityConditionSpec& out) const;
   void check_mesh_boundary(const Value& v, const std::string& name) const;
 
   /// "velocity": required for type "velocity" (grid faces, boxes and mesh boundaries alike), refused
