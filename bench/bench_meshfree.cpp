@@ -52,7 +52,7 @@ const Setup<D>& setup() {
 template <int D>
 void BM_Search(benchmark::State& state) {
   const auto& s = setup<D>();
-  const NodeCellList<D> list(s.nodes, s.par.radius());
+  const NodeCellList<D> list(s.nodes, s.par.radius() / static_cast<double>(state.range(0)));
   std::vector<NodeDistance> found;
   std::size_t total = 0;
   for (auto _ : state) {
@@ -122,8 +122,8 @@ void BM_Stencils(benchmark::State& state) {
   state.counters["cloud"] = static_cast<double>(out.node.size()) / s.points.size();
 }
 
-BENCHMARK(BM_Search<2>)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Search<3>)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Search<2>)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);  // cell = R / arg
+BENCHMARK(BM_Search<3>)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Shape<2, MeshfreeBasis::Mls>)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Shape<2, MeshfreeBasis::Lme>)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Shape<3, MeshfreeBasis::Mls>)->Unit(benchmark::kMillisecond);

@@ -70,8 +70,9 @@ class NodeCellList {
   /// Appends to `out` every node with |x - x_I| < radius, in no particular order.
   void within(const Vec<D>& x, double radius, std::vector<NodeDistance>& out) const {
     const int reach = static_cast<int>(std::ceil(radius / cell_));
-    scan_block(x, reach, [&](std::int32_t node, double r) {
-      if (r < radius) out.push_back({node, r});
+    const double radius2 = radius * radius;
+    scan_block(x, reach, [&](std::int32_t node, double r2) {
+      if (r2 < radius2) out.push_back({node, std::sqrt(r2)});
     });
   }
 
@@ -91,16 +92,18 @@ class NodeCellList {
     }
     for (int reach = first_reach;; ++reach) {
       out.clear();
-      scan_block(x, reach, [&](std::int32_t node, double r) { out.push_back({node, r}); });
+      // distance holds the squared distance until the end.
+      scan_block(x, reach, [&](std::int32_t node, double r2) { out.push_back({node, r2}); });
       if (reach >= full_reach) break;
       // x lies in its cell, so every node outside the scanned block is at least reach cells away.
       if (out.size() >= k) {
         std::nth_element(out.begin(), out.begin() + (k - 1), out.end());
-        if (out[k - 1].distance <= reach * cell_) break;
+        if (out[k - 1].distance <= reach * cell_ * reach * cell_) break;
       }
     }
     std::sort(out.begin(), out.end());
     out.resize(k);
+    for (auto& n : out) n.distance = std::sqrt(n.distance);
   }
 
   double cell() const { return cell_; }
@@ -118,7 +121,7 @@ class NodeCellList {
     return f;
   }
 
-  /// Calls f(node, distance) for every node in the cells within `reach` cells of x's cell.
+  /// Calls f(node, squared distance) for every node in the cells within `reach` cells of x's cell.
   template <class F>
   void scan_block(const Vec<D>& x, int reach, F&& f) const {
     const auto centre = cell_coordinates(x);
@@ -133,7 +136,7 @@ class NodeCellList {
       const std::int64_t cell = flat(c);
       for (std::int32_t s = start_[cell]; s < start_[cell + 1]; ++s) {
         const std::int32_t node = order_[s];
-        f(node, (nodes_[node] - x).norm());
+        f(node, (nodes_[node] - x).squaredNorm());
       }
       int a = 0;
       while (a < D && ++c[a] > hi[a]) c[a] = lo[a], ++a;
