@@ -67,10 +67,12 @@ class NodeCellList {
     for (std::size_t i = 0; i < nodes.size(); ++i) order_[fill[cell_of[i]]++] = static_cast<std::int32_t>(i);
   }
 
-  /// Appends to `out` every node with |x - x_I| < radius, in no particular order.
+  /// Appends to `out` every node with |x - x_I| < radius, in no particular order. A node within a
+  /// relative 1e-12 of the sphere counts as outside, so that a tie (a grid node at exactly R from a
+  /// point at a node, as with R = sqrt(2) h) does not depend on the rounding of R.
   void within(const Vec<D>& x, double radius, std::vector<NodeDistance>& out) const {
     const int reach = static_cast<int>(std::ceil(radius / cell_));
-    const double radius2 = radius * radius;
+    const double radius2 = radius * radius * (1.0 - 2e-12);
     scan_block(x, reach, [&](std::int32_t node, double r2) {
       if (r2 < radius2) out.push_back({node, std::sqrt(r2)});
     });
