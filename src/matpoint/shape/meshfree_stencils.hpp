@@ -12,9 +12,14 @@
 // with gamma = 1.8.
 #pragma once
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "matpoint/core/types.hpp"
@@ -134,19 +139,18 @@ MeshfreeStatus lme_point(const Vec<D>& xp, std::span<const Vec<D>> nodes, const 
 
 }  // namespace meshfree_detail
 
-/// Clouds and shape functions of every point (search radius R, basis and repairs from par).
+namespace meshfree_detail {
+
+/// The points [first, last) into out (appended).
 template <int D>
-void build_meshfree_stencils(std::span<const Vec<D>> points, std::span<const Vec<D>> nodes,
-                             const MeshfreeParameters& par, MeshfreeStencils<D>& out) {
-  const NodeCellList<D> search(nodes, par.radius());
-  out = MeshfreeStencils<D>{};
-  out.offset.reserve(points.size() + 1);
-  out.status.reserve(points.size());
-  meshfree_detail::Scratch<D> s;
-  for (const auto& xp : points) {
+void evaluate_range(std::span<const Vec<D>> points, std::size_t first, std::size_t last,
+                    std::span<const Vec<D>> nodes, const NodeCellList<D>& search,
+                    const MeshfreeParameters& par, MeshfreeStencils<D>& out) {
+  Scratch<D> s;
+  for (std::size_t p = first; p < last; ++p) {
     const MeshfreeStatus st = par.basis == MeshfreeBasis::Mls
-                                  ? meshfree_detail::mls_point<D>(xp, nodes, search, par, s, out.repairs)
-                                  : meshfree_detail::lme_point<D>(xp, nodes, search, par, s, out.repairs);
+                                  ? mls_point<D>(points[p], nodes, search, par, s, out.repairs)
+                                  : lme_point<D>(points[p], nodes, search, par, s, out.repairs);
     if (st != MeshfreeStatus::Ok && st != MeshfreeStatus::Shepard) ++out.repairs.failed;
     for (std::size_t i = 0; i < s.cloud.size(); ++i) {
       out.node.push_back(s.cloud[i].node);
@@ -155,6 +159,39 @@ void build_meshfree_stencils(std::span<const Vec<D>> points, std::span<const Vec
     }
     out.offset.push_back(static_cast<std::int64_t>(out.node.size()));
     out.status.push_back(st);
+  }
+}
+
+}  // namespace meshfree_detail
+
+/// Clouds and shape functions of every point (search radius R, basis and repairs from par). The
+/// points are split into one contiguous range per thread, each evaluated into its own rows and
+/// joined in order, so the result does not depend on the thread count.
+template <int D>
+void build_meshfree_stencils(std::span<const Vec<D>> points, std::span<const Vec<D>> nodes,
+                             const MeshfreeParameters& par, MeshfreeStencils<D>& out) {
+  const NodeCellList<D> search(nodes, par.radius());
+  int ranges = 1;
+#ifdef _OPENMP
+  if (static_cast<std::ptrdiff_t>(points.size()) >= kParallelMinimum) ranges = omp_get_max_threads();
+#endif
+  std::vector<MeshfreeStencils<D>> part(static_cast<std::size_t>(ranges));
+  const std::size_t n = points.size();
+#pragma omp parallel for schedule(static, 1) if (ranges > 1)
+  for (int r = 0; r < ranges; ++r)
+    meshfree_detail::evaluate_range<D>(points,
+                                       n * static_cast<std::size_t>(r) / static_cast<std::size_t>(ranges),
+                                       n * static_cast<std::size_t>(r + 1) / static_cast<std::size_t>(ranges),
+                                       nodes, search, par, part[static_cast<std::size_t>(r)]);
+  out = std::move(part[0]);
+  for (std::size_t r = 1; r < part.size(); ++r) {
+    const std::int64_t shift = out.offset.back();
+    for (std::size_t k = 1; k < part[r].offset.size(); ++k) out.offset.push_back(part[r].offset[k] + shift);
+    out.node.insert(out.node.end(), part[r].node.begin(), part[r].node.end());
+    out.N.insert(out.N.end(), part[r].N.begin(), part[r].N.end());
+    out.dN.insert(out.dN.end(), part[r].dN.begin(), part[r].dN.end());
+    out.status.insert(out.status.end(), part[r].status.begin(), part[r].status.end());
+    out.repairs += part[r].repairs;
   }
 }
 
