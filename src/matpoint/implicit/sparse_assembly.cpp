@@ -3,26 +3,31 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
-#include <stdexcept>
 
 namespace matpoint::implicit {
 
 namespace {
 
-/// Greedy colouring: each block takes the lowest colour that none of its dofs has seen (up to 64
-/// colours; a structured Q9 mesh needs 4). Returns the colour of every block.
+/// Greedy colouring: each block takes the lowest colour that none of its dofs has seen (a
+/// structured Q9 mesh needs 4; a meshfree point's cloud of ~25 nodes, hundreds). The colours seen at
+/// a dof are bit sets of 64 colours per word, a word added when all earlier ones are full.
+/// Returns the colour of every block.
 std::vector<int> colour_blocks(Index dof_count, std::span<const Index> offsets, std::span<const Index> dofs) {
-  std::vector<std::uint64_t> used(static_cast<std::size_t>(dof_count), 0);
+  std::vector<std::vector<std::uint64_t>> used;  // used[w][dof]: colours 64 w .. 64 w + 63
   std::vector<int> colour(offsets.size() - 1);
   for (std::size_t b = 0; b + 1 < offsets.size(); ++b) {
-    std::uint64_t taken = 0;
-    for (Index i = offsets[b]; i < offsets[b + 1]; ++i)
-      taken |= used[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])];
-    if (~taken == 0) throw std::runtime_error("sparse assembly: more than 64 block colours");
-    const int c = std::countr_one(taken);
-    colour[b] = c;
-    for (Index i = offsets[b]; i < offsets[b + 1]; ++i)
-      used[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])] |= std::uint64_t{1} << c;
+    for (std::size_t w = 0;; ++w) {
+      if (w == used.size()) used.emplace_back(static_cast<std::size_t>(dof_count), 0);
+      std::uint64_t taken = 0;
+      for (Index i = offsets[b]; i < offsets[b + 1]; ++i)
+        taken |= used[w][static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])];
+      if (~taken == 0) continue;
+      const int c = std::countr_one(taken);
+      colour[b] = static_cast<int>(64 * w) + c;
+      for (Index i = offsets[b]; i < offsets[b + 1]; ++i)
+        used[w][static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])] |= std::uint64_t{1} << c;
+      break;
+    }
   }
   return colour;
 }

@@ -1,0 +1,230 @@
+// One time step of the Galerkin meshfree method (Iaconeta et al. 2017 §4.2, Algorithm 2;
+// extraction §6.1) on the implicit framework: the nodes of the initial mesh are Lagrangian and keep
+// (v, a) history, the material points are the integration points. Per step:
+//   (1) every point's cloud and shape functions at x^n (shape/meshfree_stencils.hpp, MLS or LME,
+//       with the repairs of §5.3 when asked); the blocks of the sparse assembly are the clouds' dofs;
+//   (2) Newton on the nodal increments du (point_residual.hpp; Newmark with the nodal history, or
+//       quasi-static), Dirichlet dofs held at du = 0;
+//   (3) x_I += du_I, x_p += sum_I N_I du_I, F_p = H_p F_p^n, and the nodes' Newmark update
+//       a = c du + c_v v^n + c_a a^n, v = v^n + dt ((1 - gamma) a^n + gamma a).
+// Dirichlet conditions (du = 0 on the flagged dofs of the nodes): MLS has no Kronecker-delta
+// property, so fixing a node's dofs does not make the field vanish there; with `multipliers` (the
+// authors' choice, extraction A14) the field itself is held, sum_J N_J(x_d) du_J,i = 0 at each
+// fixed node's position x_d, by one Lagrange multiplier per fixed dof. LME interpolates on the
+// hull boundary (weak Kronecker delta), so fixing every node of a boundary face is exact there and
+// `multipliers` can be off.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "matpoint/implicit/linear_solver.hpp"
+#include "matpoint/implicit/meshfree/point_residual.hpp"
+#include "matpoint/implicit/newton.hpp"
+#include "matpoint/implicit/particle_newmark/particle_quadrature.hpp"
+#include "matpoint/implicit/sparse_assembly.hpp"
+#include "matpoint/shape/meshfree_stencils.hpp"
+
+namespace matpoint::implicit {
+
+/// The nodes and material points of a meshfree body.
+template <int D>
+struct MeshfreeBody {
+  std::vector<Vec<D>> node_x, node_v, node_a;  // positions x^n, velocities, accelerations
+  std::vector<char> fixed;                     // one flag per dof (node * D + i): du = 0
+  std::vector<Vec<D>> point_x;
+  std::vector<double> point_mass, point_volume0;
+  std::vector<Mat<D>> point_F;
+
+  [[nodiscard]] Index dofs() const { return static_cast<Index>(node_x.size()) * D; }
+};
+
+struct MeshfreeStepOptions {
+  MeshfreeParameters shape;              // basis, radius, dilation / gamma, repairs
+  NewmarkParameters newmark{0.25, 0.5};  // the paper's average acceleration (extraction §4)
+  bool quasi_static = false;             // no inertia (the static cantilever)
+  bool multipliers = true;               // Dirichlet conditions on the field (see above) or on nodal values
+  NewtonOptions newton{};
+};
+
+template <int D, class Material>
+class MeshfreeStepper {
+ public:
+  MeshfreeStepper(const Material& material, MeshfreeStepOptions options)
+      : material_(material), options_(std::move(options)), solver_(make_linear_solver()) {
+    options_.newton.components = D;
+  }
+
+  /// Advances body by dt under the body force b; returns Newton's result (the body is unchanged
+  /// unless it converged). A point without usable shape functions fails the step.
+  NewtonResult step(MeshfreeBody<D>& body, double dt, const Vec<D>& b) {
+    build_meshfree_stencils<D>(body.point_x, body.node_x, options_.shape, stencils_);
+    repairs_ += stencils_.repairs;
+    NewtonResult result;
+    if (stencils_.repairs.failed > 0) {
+      result.status = NewtonStatus::AssemblyFailed;
+      result.message =
+          "meshfree shape functions failed at " + std::to_string(stencils_.repairs.failed) + " points";
+      return result;
+    }
+    if (!build_constraints(body)) {
+      result.status = NewtonStatus::AssemblyFailed;
+      result.message = "meshfree shape functions failed at a Dirichlet node";
+      return result;
+    }
+    build_blocks(body);
+    const auto point_data = step_data(body, dt, b);
+    const auto points = static_cast<Index>(stencils_.size());
+    AssembleFunction assemble = [&](const Eigen::VectorXd& u, Eigen::VectorXd& R, SparseMatrix* K) {
+      assembly_.assemble(
+          [&](Index p, std::span<const Index> dofs, double* r, double* k) {
+            std::vector<double> local(dofs.size());
+            for (std::size_t i = 0; i < dofs.size(); ++i) local[i] = u[dofs[i]];
+            if (p < points)
+              meshfree_point_residual<D>(point_data[static_cast<std::size_t>(p)], material_, local.data(), r,
+                                         k);
+            else
+              constraint_residual(p - points, local.data(), r, k);
+          },
+          R, K);
+      return R.allFinite();
+    };
+    Eigen::VectorXd du = Eigen::VectorXd::Zero(body.dofs() + multiplier_dofs());
+    result = newton_solve(assemble, assembly_.pattern_version(), *solver_, du, options_.newton);
+    if (result.converged()) advance(body, du, dt);
+    last_increment_ = du.head(body.dofs());
+    return result;
+  }
+
+  [[nodiscard]] const MeshfreeRepairCounts& repairs() const { return repairs_; }
+  [[nodiscard]] int colours() const { return assembly_.colour_count(); }
+  [[nodiscard]] const MeshfreeStencils<D>& stencils() const { return stencils_; }
+  [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
+
+ private:
+  /// The fixed nodes as constraint points (multipliers on): their positions' shape functions.
+  bool build_constraints(const MeshfreeBody<D>& body) {
+    constrained_.clear();
+    std::vector<Vec<D>> x;
+    if (options_.multipliers)
+      for (std::size_t I = 0; I < body.node_x.size(); ++I)
+        for (int i = 0; i < D; ++i)
+          if (body.fixed[I * D + i]) {
+            constrained_.push_back(static_cast<Index>(I));
+            x.push_back(body.node_x[I]);
+            break;
+          }
+    build_meshfree_stencils<D>(x, body.node_x, options_.shape, constraint_stencils_);
+    for (const auto st : constraint_stencils_.status)
+      if (st != MeshfreeStatus::Ok && st != MeshfreeStatus::IllConditioned) return false;
+    return true;  // a node on the hull boundary is ill conditioned for LME, and still exact
+  }
+
+  [[nodiscard]] Index multiplier_dofs() const { return static_cast<Index>(constrained_.size()) * D; }
+
+  /// Blocks: the points' clouds, then each constraint's cloud and its D multipliers (those of the
+  /// free components are held at zero as Dirichlet dofs).
+  void build_blocks(const MeshfreeBody<D>& body) {
+    offsets_.assign(1, 0);
+    block_dofs_.clear();
+    auto add_cloud = [&](const MeshfreeStencils<D>& s, std::size_t p) {
+      for (auto k = s.offset[p]; k < s.offset[p + 1]; ++k)
+        for (int i = 0; i < D; ++i) block_dofs_.push_back(static_cast<Index>(s.node[k]) * D + i);
+    };
+    for (std::size_t p = 0; p < stencils_.size(); ++p) {
+      add_cloud(stencils_, p);
+      offsets_.push_back(static_cast<Index>(block_dofs_.size()));
+    }
+    std::vector<char> dirichlet(static_cast<std::size_t>(body.dofs() + multiplier_dofs()), 0);
+    if (options_.multipliers) {
+      for (std::size_t c = 0; c < constrained_.size(); ++c) {
+        add_cloud(constraint_stencils_, c);
+        for (int i = 0; i < D; ++i) {
+          const Index m = body.dofs() + static_cast<Index>(c) * D + i;
+          block_dofs_.push_back(m);
+          dirichlet[static_cast<std::size_t>(m)] =
+              !body.fixed[static_cast<std::size_t>(constrained_[c] * D + i)];
+        }
+        offsets_.push_back(static_cast<Index>(block_dofs_.size()));
+      }
+    } else {
+      std::copy(body.fixed.begin(), body.fixed.end(), dirichlet.begin());
+    }
+    assembly_.build(body.dofs() + multiplier_dofs(), offsets_, block_dofs_, dirichlet);
+  }
+
+  /// Constraint c with multipliers l_i (the last D local dofs): r_Ji += l_i N_J, r_li = sum_J N_J du_Ji.
+  void constraint_residual(Index c, const double* u, double* r, double* K) const {
+    const auto first = static_cast<std::size_t>(constraint_stencils_.offset[static_cast<std::size_t>(c)]);
+    const auto n =
+        static_cast<std::size_t>(constraint_stencils_.offset[static_cast<std::size_t>(c) + 1]) - first;
+    const std::size_t m = n * D + D, l = n * D;
+    for (std::size_t J = 0; J < n; ++J) {
+      const double N = constraint_stencils_.N[first + J];
+      for (int i = 0; i < D; ++i) {
+        r[J * D + i] += u[l + i] * N;
+        r[l + i] += N * u[J * D + i];
+        if (K != nullptr) K[(J * D + i) * m + l + i] = K[(l + i) * m + J * D + i] = N;
+      }
+    }
+  }
+
+  /// Per point: its stencil, and a_p's known part from the nodes' history (consistent mass:
+  /// a_p = sum_I N_I a_I with a_I = c du_I + c_v v_I + c_a a_I).
+  std::vector<MeshfreePointData<D>> step_data(const MeshfreeBody<D>& body, double dt, const Vec<D>& b) const {
+    const NewmarkCoefficients c(options_.newmark, dt);
+    std::vector<MeshfreePointData<D>> data(stencils_.size());
+    for (std::size_t p = 0; p < data.size(); ++p) {
+      const auto first = static_cast<std::size_t>(stencils_.offset[p]),
+                 last = static_cast<std::size_t>(stencils_.offset[p + 1]);
+      auto& q = data[p];
+      q.N = std::span<const double>(stencils_.N.data() + first, last - first);
+      q.G = std::span<const Vec<D>>(stencils_.dN.data() + first, last - first);
+      q.mass = body.point_mass[p], q.volume0 = body.point_volume0[p], q.F_old = body.point_F[p], q.dt = dt;
+      Vec<D> known = Vec<D>::Zero();
+      if (!options_.quasi_static) {
+        q.inertia_coefficient = c.displacement;
+        for (std::size_t k = first; k < last; ++k)
+          known += stencils_.N[k] * c.known<D>(body.node_v[static_cast<std::size_t>(stencils_.node[k])],
+                                               body.node_a[static_cast<std::size_t>(stencils_.node[k])]);
+      }
+      q.known_minus_b = known - b;
+    }
+    return data;
+  }
+
+  void advance(MeshfreeBody<D>& body, const Eigen::VectorXd& du, double dt) const {
+    for (std::size_t p = 0; p < stencils_.size(); ++p) {
+      Mat<D> H = Mat<D>::Identity();
+      for (auto k = stencils_.offset[p]; k < stencils_.offset[p + 1]; ++k) {
+        const Vec<D> d = du.segment<D>(static_cast<Index>(stencils_.node[k]) * D);
+        body.point_x[p] += stencils_.N[k] * d;
+        H += d * stencils_.dN[k].transpose();
+      }
+      body.point_F[p] = H * body.point_F[p];
+    }
+    const NewmarkCoefficients c(options_.newmark, dt);
+    for (std::size_t I = 0; I < body.node_x.size(); ++I) {
+      const Vec<D> d = du.segment<D>(static_cast<Index>(I) * D);
+      body.node_x[I] += d;
+      if (options_.quasi_static) continue;
+      const Vec<D> a = c.displacement * d + c.known<D>(body.node_v[I], body.node_a[I]);
+      body.node_v[I] += dt * ((1.0 - options_.newmark.gamma) * body.node_a[I] + options_.newmark.gamma * a);
+      body.node_a[I] = a;
+    }
+  }
+
+  Material material_;
+  MeshfreeStepOptions options_;
+  std::unique_ptr<LinearSolver> solver_;
+  SparseAssembly assembly_;
+  MeshfreeStencils<D> stencils_, constraint_stencils_;
+  std::vector<Index> constrained_;  // nodes with a fixed dof (multipliers on)
+  MeshfreeRepairCounts repairs_;
+  std::vector<Index> offsets_, block_dofs_;
+  Eigen::VectorXd last_increment_;
+};
+
+}  // namespace matpoint::implicit
