@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -90,8 +91,26 @@ class ExplicitSolver {
     stepper_.restore({c.next_fmpm_time, c.total_mass, {c.fmpm_loops, c.fmpm_passes, c.fmpm_seconds}});
   }
 
-  [[nodiscard]] std::vector<std::string> history_columns() const { return {}; }
-  std::vector<double> history_values() { return {}; }
+  /// Coupled heat (HeatSpec) adds its columns (docs/output.md): the largest and the mean particle
+  /// temperature, the heat content Q_T = sum_p M_p C_V (T_p - T0), and the heat in, Q = the heat
+  /// through the thermal conditions plus the frictional work turned into heat.
+  [[nodiscard]] std::vector<std::string> history_columns() const {
+    if (!sim_.heat.enabled) return {};
+    return {"temperature_max", "temperature_mean", "heat_content", "heat_in"};
+  }
+  std::vector<double> history_values() {
+    if (!sim_.heat.enabled) return {};
+    const auto& ps = sim_.particles;
+    double largest = -std::numeric_limits<double>::infinity(), sum = 0.0, content = 0.0;
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      largest = std::max(largest, ps.temperature[p]);
+      sum += ps.temperature[p];
+      content += ps.mass[p] * sim_.heat_capacity[ps.material[p]] * (ps.temperature[p] - sim_.heat.initial_temperature);
+    }
+    const double mean = ps.size() > 0 ? sum / static_cast<double>(ps.size()) : 0.0;
+    const double in = sim_.boundary_heat + (sim_.heat.friction ? sim_.friction_work : 0.0);
+    return {largest, mean, content, in};
+  }
   void write_static_outputs(const std::filesystem::path&, std::string&) const {}
 
   void add_facts(RunFacts& facts) const {
