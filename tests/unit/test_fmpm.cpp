@@ -277,8 +277,8 @@ TEST(FmpmTransport, ScalarLoopWithMassWeightsReproducesEachVelocityComponent) {
     FmpmLoop<2, double> loop(order(5));
     loop.set_particle_weights(&problem.particles.mass);
     ScalarScatterWorkspace ws;
-    loop.run(problem.grid, problem.stencils, problem.particles, problem.fields.mass, 0.0, ThermalConditions<2>{},
-             0.0, T, ws);
+    loop.run(problem.grid, problem.stencils, problem.particles, problem.fields.mass, 0.0,
+             ThermalConditions<2>{}, 0.0, T, ws);
     for (std::size_t i = 0; i < T.size(); ++i) EXPECT_NEAR(T[i], velocity[i][a], 1e-13) << "node " << i;
   }
 }

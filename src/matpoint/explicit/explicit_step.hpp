@@ -206,7 +206,8 @@ class ExplicitStepper {
   /// Coulomb friction's work (history), and its heat at the contact nodes with coupled heat.
   void add_friction_work(const std::vector<Vec<D>>& velocity) {
     s_.friction_work += s_.contact.friction_work(s_.fields.mass, velocity);
-    if (heat_.active() && s_.heat.friction) s_.contact.add_friction_heat(s_.fields.mass, velocity, heat_.node_heat());
+    if (heat_.active() && s_.heat.friction)
+      s_.contact.add_friction_heat(s_.fields.mass, velocity, heat_.node_heat());
   }
 
   /// Rigid particles keep their prescribed velocity exactly and no velocity gradient.
@@ -387,7 +388,7 @@ class ExplicitStepper {
   std::vector<Vec<D>> step_start_x_;  // MLS mapping: positions of the start of the step
   FmpmLoop<D> fmpm_;
   MlsMapping<D> mls_;
-  HeatTransport<D> heat_;  // inactive unless the input has a "heat" section
+  HeatTransport<D> heat_;     // inactive unless the input has a "heat" section
   bool fmpm_now_ = false;     // this step runs the FMPM loop
   double fmpm_period_ = 0.0;  // periodic FMPM by time or Courant units
   double next_fmpm_time_ = 0.0;

@@ -95,7 +95,7 @@ class FmpmLoop {
       stencils.for_each_node(grid, p, [&](Index node, double N, const Vec<D>&) { u += N * prev[node]; });
       gathered_[p] = u;
     }
-    const std::vector<Value>& weighted = scatter_weighted(grid, stencils, particles, ws);  // sum_p w_p S_pi U_p
+    const std::vector<Value>& weighted = scatter_weighted(grid, stencils, particles, ws);  // w_p S_pi U_p
     const auto nodes = static_cast<std::ptrdiff_t>(mass.size());
     next.resize(mass.size());
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)

@@ -259,7 +259,8 @@ void SpecReader::read_thermal(const Object& m, std::optional<MaterialModel> mode
   set_if(out.heat_capacity, m.optional("heat_capacity").number(kPositive));
   set_if(out.conductivity, m.optional("conductivity").number(kNonNegative));
   const Value alpha = m.optional("thermal_expansion");
-  if (alpha.present() && model && *model != MaterialModel::LinearElastic && *model != MaterialModel::NeoHookean)
+  if (alpha.present() && model && *model != MaterialModel::LinearElastic &&
+      *model != MaterialModel::NeoHookean)
     alpha.fail("no \"thermal_expansion\" for a " + std::string(name_of(kModels, *model)) +
                " material (only linear_elastic and neo_hookean have thermal expansion)");
   else
