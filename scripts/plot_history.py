@@ -4,7 +4,9 @@
 Writes DIR/plots/energy.png (energies and the relative energy-balance drift), DIR/plots/momentum.png,
 DIR/plots/probes.png when the input has output.probes (displacement, velocity and stress of each
 probed particle: one colour per probe, one line style per component), DIR/plots/newton.png for
-implicit runs (Newton iterations, final residual norm, step cuts and dt per recorded step) and, for
+implicit runs (Newton iterations, final residual norm, step cuts and dt per recorded step),
+DIR/plots/temperature.png for runs with coupled heat (largest and mean particle temperature; U + K
+and the change of the free energy A) and, for
 2-D and 3-D runs,
 DIR/plots/final_state.png (the last particles_NNNNNN.vtu coloured by speed; in 3-D its x-y and
 x-z projections). Axes carry the units of the input's optional `units` block.
@@ -156,6 +158,28 @@ def plot_newton(h, title, plots, units):
     save(fig, plots, "newton.png")
 
 
+def plot_temperature(h, title, plots, units):
+    """Coupled heat: temperatures (top) and U + K, Delta A (bottom; Nairn 2026 Figs. 9A, 10)."""
+    if "temperature_max" not in h:
+        return
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
+    top.plot(h["time"], h["temperature_max"], label="largest particle temperature")
+    top.plot(h["time"], h["temperature_mean"], label="mean particle temperature")
+    top.set_ylabel("temperature")
+    top.set_title(short_title(title) or "temperature")
+    top.legend(loc="best")
+    top.grid(alpha=0.3)
+    total = [u + k for u, k in zip(h["internal_energy"], h["kinetic_energy"])]
+    bottom.plot(h["time"], total, label="U + K")
+    bottom.plot(h["time"], [a - h["free_energy"][0] for a in h["free_energy"]], label="free energy change ΔA")
+    bottom.set_xlabel(axis_label("time", units))
+    bottom.set_ylabel(axis_label("energy", units))
+    bottom.legend(loc="best")
+    bottom.grid(alpha=0.3)
+    fig.tight_layout()
+    save(fig, plots, "temperature.png")
+
+
 def probe_names(h):
     """Probe names in column order, from the probe_NAME_J columns of history.csv."""
     return [column[len("probe_"):-len("_J")] for column in h if column.startswith("probe_") and column.endswith("_J")]
@@ -268,6 +292,7 @@ def main(argv):
     plot_momentum(h, title, plots, units)
     plot_probes(h, title, plots, units)
     plot_newton(h, title, plots, units)
+    plot_temperature(h, title, plots, units)
     if "momentum_y" in h:  # 2-D and 3-D
         plot_final_state(directory, title, plots, units)
     return 0

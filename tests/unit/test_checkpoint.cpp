@@ -228,7 +228,8 @@ void expect_same_state(const fs::path& a, const fs::path& b) {
   EXPECT_EQ(x.number("simulation/time"), y.number("simulation/time"));
   EXPECT_EQ(x.integer("simulation/step"), y.integer("simulation/step"));
   for (const char* name : {"particles/x", "particles/v", "particles/F", "particles/stress", "particles/L",
-                           "particles/corners", "simulation/external_impulse", "simulation/external_work"}) {
+                           "particles/corners", "particles/temperature", "simulation/external_impulse",
+                           "simulation/external_work", "simulation/boundary_heat"}) {
     ASSERT_EQ(x.shape(name), y.shape(name)) << name;
     EXPECT_TRUE(same(x.doubles(name, x.shape(name)), y.doubles(name, y.shape(name)))) << name << " differs";
   }
@@ -276,6 +277,23 @@ TEST(Restart, RunStoppedByMaxStepsContinuesBitForBit) {
   expect_restart_equals_uninterrupted("max_steps", spec, [&](const fs::path& dir) {
     Spec first = spec;
     first.solver.max_steps = 23;  // a finished run with checkpoints enabled writes a final checkpoint
+    return run_in(first, dir);
+  });
+}
+
+TEST(Restart, HeatRunContinuesBitForBit) {
+  // Coupled heat conduction: particle temperatures (a sine mode conducted with transport FMPM(3),
+  // thermal expansion and thermoelastic heating) continue bit for bit.
+  std::string text = input_text(2, "bspline2", R"("flip")");
+  const std::string nu = R"("nu": 0.3})";
+  text.replace(text.find(nu), nu.size(),
+               R"("nu": 0.3, "heat_capacity": 1000, "conductivity": 20, "thermal_expansion": 1e-4})");
+  text.insert(text.rfind('}'), R"(, "heat": {"transfer": "fmpm", "fmpm_order": 3,
+      "temperature_sine": {"amplitude": 5, "wave_vector": [3, 2]}})");
+  const Spec spec = parse_spec(text);
+  expect_restart_equals_uninterrupted("heat", spec, [&](const fs::path& dir) {
+    Spec first = spec;
+    first.solver.max_steps = 23;
     return run_in(first, dir);
   });
 }

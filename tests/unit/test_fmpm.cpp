@@ -8,6 +8,7 @@
 
 #include "matpoint/explicit/fmpm.hpp"
 #include "matpoint/explicit/grid_update.hpp"
+#include "matpoint/grid/thermal_conditions.hpp"
 #include "matpoint/particles/generators.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
@@ -257,6 +258,28 @@ TEST(Fmpm, BlendingReproducesItsSeries) {
     EXPECT_LT(max_difference(problem.fmpm(blended), expected), 1e-13) << "blend with FMPM(" << with << ")";
     blended.blend_factor = 1.0;
     EXPECT_LT(max_difference(problem.fmpm(blended), problem.fmpm(order(k))), 1e-15);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// Transport FMPM (Nairn 2026 §3.5): the same loop instantiated for scalars, with particle weights
+// w_p in place of M_p and the capacity sum_p w_p S_pi in place of the mass. With w_p = M_p it must
+// give, component by component, the velocities of the mechanics loop (the same arithmetic).
+TEST(FmpmTransport, ScalarLoopWithMassWeightsReproducesEachVelocityComponent) {
+  Problem<2, QuadraticBSplineBasis> problem(4);
+  const auto velocity = problem.fmpm(order(5));
+  for (int a = 0; a < 2; ++a) {
+    std::vector<double> T(problem.v1.size());
+    for (std::size_t i = 0; i < T.size(); ++i) T[i] = problem.v1[i][a];
+    FmpmLoop<2, double> loop(order(5));
+    loop.set_particle_weights(&problem.particles.mass);
+    ScalarScatterWorkspace ws;
+    loop.run(problem.grid, problem.stencils, problem.particles, problem.fields.mass, 0.0,
+             ThermalConditions<2>{}, 0.0, T, ws);
+    for (std::size_t i = 0; i < T.size(); ++i) EXPECT_NEAR(T[i], velocity[i][a], 1e-13) << "node " << i;
   }
 }
 

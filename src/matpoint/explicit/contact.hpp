@@ -128,6 +128,24 @@ class MultiFieldContact {
     return work;
   }
 
+  /// The same frictional work node by node, added to `heat` (by multi-field node) as the heat of
+  /// coupled conduction: half to each field of a pair, all of it to the deformable field against
+  /// a rigid one or against the rest (our choice; Nairn 2026 §3.2.2 only says friction becomes heat).
+  void add_friction_heat(const std::vector<double>& mass, const std::vector<Vec<D>>& velocity,
+                         std::vector<double>& heat) const {
+    const auto v = [&](Index i) -> Vec<D> { return velocity[i]; };
+    for (const auto& e : entries_) {
+      if (e.law.law != ContactLaw::Coulomb) continue;
+      const double w = slip_work(e, e.total, mass, v);
+      if (e.kind == Kind::Pair) {
+        heat[at(e.a, e.node)] += 0.5 * w;
+        heat[at(e.b, e.node)] += 0.5 * w;
+      } else {
+        heat[at(e.a, e.node)] += w;
+      }
+    }
+  }
+
   /// FMPM loop line (2) on the increment dv(l) of every field: rigid fields get no increment, and
   /// each contact node the Net (or Evolving) correction of Nairn 2026 eq. (20).
   void correct_increment(const std::vector<double>& mass, std::vector<Vec<D>>& dv) {

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -90,8 +92,40 @@ class ExplicitSolver {
     stepper_.restore({c.next_fmpm_time, c.total_mass, {c.fmpm_loops, c.fmpm_passes, c.fmpm_seconds}});
   }
 
-  [[nodiscard]] std::vector<std::string> history_columns() const { return {}; }
-  std::vector<double> history_values() { return {}; }
+  /// Coupled heat (HeatSpec) adds its columns (docs/output.md): the largest and the mean particle
+  /// temperature, the heat content Q_T = sum_p M_p C_V (T_p - T0), the heat in, Q = the heat
+  /// through the thermal conditions plus the frictional work turned into heat, and the
+  /// thermodynamic totals of docs/theory/heat.md: internal energy U, entropy S (relative to the
+  /// initial state at T0) and Helmholtz free energy A = sum_p V0_p psi_p.
+  [[nodiscard]] std::vector<std::string> history_columns() const {
+    if (!sim_.heat.enabled) return {};
+    return {"temperature_max", "temperature_mean", "heat_content", "heat_in",
+            "internal_energy", "entropy",          "free_energy"};
+  }
+  std::vector<double> history_values() {
+    if (!sim_.heat.enabled) return {};
+    const auto& ps = sim_.particles;
+    const double T0 = sim_.heat.initial_temperature;
+    double largest = -std::numeric_limits<double>::infinity(), sum = 0.0, content = 0.0;
+    double coupling = 0.0, entropy = 0.0, thermal_free = 0.0;  // sum_p V0_p (e - W), s, (psi - W)
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      const auto m = static_cast<std::size_t>(ps.material[p]);
+      const double T = ps.temperature[p], heat = ps.mass[p] * sim_.heat_capacity[m] * (T - T0);
+      const double lnJ = std::log(ps.F[p].determinant()), b = ps.volume0[p] * sim_.expansion_modulus[m] * lnJ;
+      const double s = b + ps.mass[p] * sim_.heat_capacity[m] * std::log(T / T0);
+      largest = std::max(largest, T);
+      sum += T;
+      content += heat;
+      coupling += b * T0 + heat;
+      entropy += s;
+      thermal_free += heat - b * (T - T0) - T * (s - b);
+    }
+    const double mean = ps.size() > 0 ? sum / static_cast<double>(ps.size()) : 0.0;
+    const double in = sim_.boundary_heat + (sim_.heat.friction ? sim_.friction_work : 0.0);
+    const double W = strain_energy<D>(sim_.materials, ps);
+    return {largest, mean, content, in, W + coupling, entropy, W + thermal_free};
+  }
+
   void write_static_outputs(const std::filesystem::path&, std::string&) const {}
 
   void add_facts(RunFacts& facts) const {

@@ -13,6 +13,7 @@
 #include "matpoint/explicit/fmpm.hpp"
 #include "matpoint/explicit/gather.hpp"
 #include "matpoint/explicit/grid_update.hpp"
+#include "matpoint/explicit/heat_transport.hpp"
 #include "matpoint/explicit/mls_mapping.hpp"
 #include "matpoint/explicit/scatter.hpp"
 #include "matpoint/explicit/simulation.hpp"
@@ -33,6 +34,7 @@ class ExplicitStepper {
       : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm, sim.significant_mass), mls_(sim.solver.mls) {
     velocity_.resize(sim.fields.mass.size());
     if constexpr (kFields) set_up_fields();
+    if (sim.heat.enabled) heat_ = HeatTransport<D>(sim, kFields ? static_cast<int>(sim.field_of.size()) : 1);
     for (std::size_t p = 0; p < sim.particles.size(); ++p)
       if (sim.rigid_material.empty() || !sim.rigid_material[sim.particles.material[p]])
         total_mass_ += sim.particles.mass[p];
@@ -91,6 +93,7 @@ class ExplicitStepper {
         strain_from_momentum(0.5 * dt, t_new);
         break;
     }
+    if (heat_.active()) heat_.step(s_, grid_, stencils_, s_.particles, dt, t_new, s_.boundary_heat);
     s_.time = t_new;
     s_.last_dt = dt;
     ++s_.step;
@@ -100,6 +103,7 @@ class ExplicitStepper {
   /// The grid of the transfers: grid.node_count covers every field's nodes.
   [[nodiscard]] const Grid<D>& field_grid() const { return grid_; }
   [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
+  [[nodiscard]] const HeatTransport<D>& heat() const { return heat_; }
   [[nodiscard]] const MlsStatistics& mls_statistics() const { return mls_.statistics(); }
 
   /// What the stepper carries from step to step besides the Simulation (checkpoints keep it).
@@ -191,12 +195,19 @@ class ExplicitStepper {
     auto& f = s_.fields;
     s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
     s_.contact.apply_lumped(f.mass, f.velocity_new, false);
-    if (!fmpm_now_) s_.friction_work += s_.contact.friction_work(f.mass, f.velocity_new);  // FMPM: after the loop
+    if (!fmpm_now_) add_friction_work(f.velocity_new);  // FMPM: after the loop
     s_.conditions.apply(f.velocity_new, t_new, &f.mass, &impulse, &work);
     s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
     const auto n = static_cast<std::ptrdiff_t>(f.mass.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
     for (std::ptrdiff_t i = 0; i < n; ++i) f.acceleration[i] = (f.velocity_new[i] - f.velocity[i]) / dt;
+  }
+
+  /// Coulomb friction's work (history), and its heat at the contact nodes with coupled heat.
+  void add_friction_work(const std::vector<Vec<D>>& velocity) {
+    s_.friction_work += s_.contact.friction_work(s_.fields.mass, velocity);
+    if (heat_.active() && s_.heat.friction)
+      s_.contact.add_friction_heat(s_.fields.mass, velocity, heat_.node_heat());
   }
 
   /// Rigid particles keep their prescribed velocity exactly and no velocity gradient.
@@ -248,7 +259,7 @@ class ExplicitStepper {
     if (fmpm_now_) {
       fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new,
                 s_.fields.velocity_new, workspace_, &impulse, &work);
-      if constexpr (kFields) s_.friction_work += s_.contact.friction_work(s_.fields.mass, s_.fields.velocity_new);
+      if constexpr (kFields) add_friction_work(s_.fields.velocity_new);
     } else if (s_.solver.transfer == VelocityTransfer::XPIC) {
       // The series on the old lumped velocities (§1.5). Its increments are zeroed on the condition
       // directions as FMPM's are (Table 2, bottom block), so that a condition node keeps v(1) and
@@ -311,6 +322,10 @@ class ExplicitStepper {
     update_deformation(s_.particles, dt, s_.solver.deformation_update);
     const ArtificialViscosity av{s_.solver.av_linear, s_.solver.av_quadratic, s_.grid.min_cell_size()};
     const long bad = update_stress<D>(s_.materials, s_.particles, av, dt);
+    if (heat_.active()) {  // thermoelastic coupling (heat_transport.hpp)
+      heat_.thermoelastic(s_, s_.particles, dt);
+      heat_.thermal_stress(s_, s_.particles);
+    }
     if (bad >= 0) {
       std::ostringstream what;
       const double J = s_.particles.F[bad].determinant();
@@ -373,6 +388,7 @@ class ExplicitStepper {
   std::vector<Vec<D>> step_start_x_;  // MLS mapping: positions of the start of the step
   FmpmLoop<D> fmpm_;
   MlsMapping<D> mls_;
+  HeatTransport<D> heat_;     // inactive unless the input has a "heat" section
   bool fmpm_now_ = false;     // this step runs the FMPM loop
   double fmpm_period_ = 0.0;  // periodic FMPM by time or Courant units
   double next_fmpm_time_ = 0.0;

@@ -7,14 +7,20 @@
 // loop over node pairs, with the step's stencils (no re-evaluation). Each increment then gets
 // the corrections of Table 1: blending (§3.3), zeroed velocity-condition directions (line (1),
 // Table 2), contact (line (2), set_increment_correction) and the dynamic stop (line (3), §3.4).
+// Transport FMPM (Nairn 2026 §3.5, extraction §2.6): the same loop with Value = double serves a
+// transported scalar (temperature), the nodal capacity in place of the nodal mass and the
+// particle weights M_p C_V,p (set_particle_weights) in place of M_p; its Conditions are then the
+// thermal ones (grid/thermal_conditions.hpp) and its "impulse" the heat they add.
 #pragma once
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <type_traits>
 #include <vector>
 
+#include "matpoint/explicit/scalar_scatter.hpp"
 #include "matpoint/explicit/scatter.hpp"
 #include "matpoint/grid/velocity_conditions.hpp"
 #include "matpoint/io/spec.hpp"
@@ -31,20 +37,34 @@ struct FmpmStatistics {
   }
 };
 
+/// |x| of a transported value: the Euclidean norm of a velocity, the magnitude of a scalar.
 template <int D>
+double magnitude(const Vec<D>& x) {
+  return x.norm();
+}
+inline double magnitude(double x) { return std::abs(x); }
+
+/// Value: Vec<D> (mechanics: velocities, nodal masses) or double (transport: e.g. temperatures,
+/// nodal capacities).
+template <int D, class Value = Vec<D>>
 class FmpmLoop {
+  static constexpr bool kScalar = std::is_same_v<Value, double>;
+
  public:
+  using Workspace = std::conditional_t<kScalar, ScalarScatterWorkspace, ScatterWorkspace<D>>;
+
   explicit FmpmLoop(const FmpmSpec& spec = {}, double measure_floor = 0.0)
       : spec_(spec), measure_floor_(measure_floor) {}
 
   /// Replaces v (on entry v+(1) = m^-1 p+ with the velocity conditions applied, the first line of
   /// Table 1) by v+(k). `t` is the time of the conditions (used by the "combined" method only).
   /// Returns the order reached (k, or less when the dynamic measure stops the loop).
-  template <class Stencils>
+  /// `mass`: the nodal masses (capacities in transport); `conditions`: VelocityConditions<D>, or
+  /// the transport's conditions with the same zero_constrained/apply interface.
+  template <class Stencils, class Conditions>
   int run(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
-          const std::vector<double>& mass, double mass_floor, const VelocityConditions<D>& conditions,
-          double t, std::vector<Vec<D>>& v, ScatterWorkspace<D>& ws, Vec<D>* impulse = nullptr,
-          double* work = nullptr) {
+          const std::vector<double>& mass, double mass_floor, const Conditions& conditions, double t,
+          std::vector<Value>& v, Workspace& ws, Value* impulse = nullptr, double* work = nullptr) {
     const int k = spec_.order;
     statistics_.loops += 1;
     if (k <= 1) return 1;
@@ -65,29 +85,30 @@ class FmpmLoop {
   /// next = S+S prev on the active nodes (zero on the others): one FMPM pass.
   template <class Stencils>
   void apply_projection(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
-                        const std::vector<double>& mass, double mass_floor, const std::vector<Vec<D>>& prev,
-                        std::vector<Vec<D>>& next, ScatterWorkspace<D>& ws) {
+                        const std::vector<double>& mass, double mass_floor, const std::vector<Value>& prev,
+                        std::vector<Value>& next, Workspace& ws) {
     const auto n = static_cast<std::ptrdiff_t>(particles.size());
     gathered_.resize(particles.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
     for (std::ptrdiff_t p = 0; p < n; ++p) {  // U_p = sum_j S_pj prev_j
-      Vec<D> u = Vec<D>::Zero();
+      Value u = zero();
       stencils.for_each_node(grid, p, [&](Index node, double N, const Vec<D>&) { u += N * prev[node]; });
       gathered_[p] = u;
     }
-    if (scratch_.momentum.size() != mass.size()) scratch_.momentum.assign(mass.size(), Vec<D>::Zero());
-    scatter_to_grid<kScatterMomentum>(grid, stencils, particles, Vec<D>(Vec<D>::Zero()), scratch_, ws,
-                                      &gathered_);
+    const std::vector<Value>& weighted = scatter_weighted(grid, stencils, particles, ws);  // w_p S_pi U_p
     const auto nodes = static_cast<std::ptrdiff_t>(mass.size());
     next.resize(mass.size());
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
     for (std::ptrdiff_t i = 0; i < nodes; ++i)
-      next[i] = mass[i] > mass_floor ? Vec<D>((scratch_.momentum[i] / mass[i]).eval()) : Vec<D>::Zero();
+      next[i] = mass[i] > mass_floor ? Value(weighted[i] / mass[i]) : zero();
   }
+
+  /// Transport: the particle weights w_p (M_p C_V,p) that play the particle masses' part.
+  void set_particle_weights(const std::vector<double>* weights) { weights_ = weights; }
 
   /// Line (2) of Table 1: a correction of every increment dv(l), l >= 2, after the conditions
   /// (multimaterial contact, explicit/contact.hpp). None by default.
-  void set_increment_correction(std::function<void(std::vector<Vec<D>>&)> correction) {
+  void set_increment_correction(std::function<void(std::vector<Value>&)> correction) {
     correction_ = std::move(correction);
   }
 
@@ -96,12 +117,36 @@ class FmpmLoop {
   [[nodiscard]] const FmpmSpec& spec() const { return spec_; }
 
  private:
-  /// Table 1 with lines (1) and (3): dv(l) = A dv(l-1), blended, conditions zeroed, summed.
+  static Value zero() {
+    if constexpr (kScalar)
+      return 0.0;
+    else
+      return Vec<D>::Zero();
+  }
+
+  /// sum_p w_p S_pi U_p: the masses M_p (mechanics, through scatter_to_grid) or the weights.
   template <class Stencils>
+  const std::vector<Value>& scatter_weighted(const Grid<D>& grid, const Stencils& stencils,
+                                             const ParticleSet<D>& particles, Workspace& ws) {
+    if constexpr (kScalar) {
+      const std::vector<double>& w = *weights_;
+      scatter_scalar(grid, stencils, particles.size(), scratch_, ws,
+                     [&](std::ptrdiff_t p, double N, const Vec<D>&) { return w[p] * N * gathered_[p]; });
+      return scratch_;
+    } else {
+      if (scratch_.momentum.size() != static_cast<std::size_t>(grid.node_count))
+        scratch_.momentum.assign(grid.node_count, Vec<D>::Zero());
+      scatter_to_grid<kScatterMomentum>(grid, stencils, particles, Vec<D>(Vec<D>::Zero()), scratch_, ws,
+                                        &gathered_);
+      return scratch_.momentum;
+    }
+  }
+
+  /// Table 1 with lines (1) and (3): dv(l) = A dv(l-1), blended, conditions zeroed, summed.
+  template <class Stencils, class Conditions>
   int run_incremental(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
-                      const std::vector<double>& mass, double mass_floor,
-                      const VelocityConditions<D>& conditions, double t, std::vector<Vec<D>>& v,
-                      ScatterWorkspace<D>& ws, Vec<D>* impulse, double* work) {
+                      const std::vector<double>& mass, double mass_floor, const Conditions& conditions,
+                      double t, std::vector<Value>& v, Workspace& ws, Value* impulse, double* work) {
     prev_ = v;  // dv(1) = v+(1); v holds the running sum v* = v+(l)
     const auto nodes = static_cast<std::ptrdiff_t>(v.size());
     for (int l = 2; l <= spec_.order; ++l) {
@@ -124,13 +169,12 @@ class FmpmLoop {
   /// v+(k) = sum_l (-1)^{l+1} v*_l. Kept to verify eq. (6); no per-increment corrections.
   template <class Stencils>
   int run_binomial(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
-                   const std::vector<double>& mass, double mass_floor, std::vector<Vec<D>>& v,
-                   ScatterWorkspace<D>& ws) {
+                   const std::vector<double>& mass, double mass_floor, std::vector<Value>& v, Workspace& ws) {
     const int k = spec_.order;
     const auto nodes = static_cast<std::ptrdiff_t>(v.size());
     prev_.resize(v.size());
     for (std::ptrdiff_t i = 0; i < nodes; ++i) prev_[i] = k * v[i];
-    std::vector<Vec<D>>& sum = v;
+    std::vector<Value>& sum = v;
     for (std::ptrdiff_t i = 0; i < nodes; ++i) sum[i] = prev_[i];
     for (int l = 2; l <= k; ++l) {
       apply_projection(grid, stencils, particles, mass, mass_floor, prev_, next_, ws);
@@ -155,16 +199,16 @@ class FmpmLoop {
   ///   Means   = sum |dv_i| / sum |v*_i|
   ///   Changes = mean over nodes of |dv_i| / (|v*_i| + eps), eps = 1 % of max |v*_i|.
   [[nodiscard]] double measure(const std::vector<double>& mass, double mass_floor,
-                               const std::vector<Vec<D>>& v) const {
+                               const std::vector<Value>& v) const {
     double change = 0.0, total = 0.0, largest = 0.0;
     long active = 0;
     for (std::size_t i = 0; i < v.size(); ++i)
-      if (mass[i] > mass_floor) largest = std::max(largest, v[i].norm());
+      if (mass[i] > mass_floor) largest = std::max(largest, magnitude(v[i]));
     const double eps = 0.01 * largest;
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (!(mass[i] > mass_floor)) continue;
       ++active;
-      const double dv = prev_[i].norm(), vi = v[i].norm();
+      const double dv = magnitude(prev_[i]), vi = magnitude(v[i]);
       if (spec_.measure == FmpmMeasure::Means) {
         change += dv;
         total += vi;
@@ -179,10 +223,12 @@ class FmpmLoop {
   FmpmSpec spec_;
   double measure_floor_ = 0.0;  // nodes at or below it are left out of the dynamic measures
   FmpmStatistics statistics_;
-  std::vector<Vec<D>> prev_, next_;  // dv(l - 1) and S+S dv(l - 1)
-  std::vector<Vec<D>> gathered_;     // U_p
-  GridFields<D> scratch_;            // only its momentum is used
-  std::function<void(std::vector<Vec<D>>&)> correction_;
+  std::vector<Value> prev_, next_;  // dv(l - 1) and S+S dv(l - 1)
+  std::vector<Value> gathered_;     // U_p
+  // mechanics: only the momentum is used; transport: the weighted sum itself
+  std::conditional_t<kScalar, std::vector<double>, GridFields<D>> scratch_;
+  const std::vector<double>* weights_ = nullptr;  // transport: w_p
+  std::function<void(std::vector<Value>&)> correction_;
 };
 
 }  // namespace matpoint

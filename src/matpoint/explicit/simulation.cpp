@@ -86,6 +86,29 @@ void set_up_contact(const Spec& spec, Simulation<D>& sim) {
   }
 }
 
+/// Coupled heat conduction (HeatSpec): the materials' thermal constants and the particles'
+/// initial temperatures T0 + amplitude sin(k . x + phase).
+template <int D>
+void set_up_heat(const Spec& spec, Simulation<D>& sim) {
+  const HeatSpec& h = spec.heat;
+  sim.heat = h;
+  for (const auto& m : spec.materials) {
+    sim.heat_capacity.push_back(m.heat_capacity);
+    sim.conductivity.push_back(m.conductivity);
+    const double bulk = m.lambda + 2.0 * m.mu / 3.0;  // 3-D bulk modulus K
+    sim.expansion_modulus.push_back(h.thermoelastic ? 3.0 * bulk * m.thermal_expansion : 0.0);
+    if (h.conduction && m.heat_capacity > 0.0)
+      sim.max_diffusivity = std::max(sim.max_diffusivity, m.conductivity / (m.density * m.heat_capacity));
+  }
+  auto& ps = sim.particles;
+  ps.temperature.assign(ps.size(), h.initial_temperature);
+  if (!h.has_sine) return;
+  Vec<D> k;
+  for (int a = 0; a < D; ++a) k[a] = h.sine_wave_vector[a];
+  for (std::size_t p = 0; p < ps.size(); ++p)
+    ps.temperature[p] += h.sine_amplitude * std::sin(k.dot(ps.x[p]) + h.sine_phase);
+}
+
 }  // namespace
 
 template <int D>
@@ -134,6 +157,7 @@ Simulation<D> build_simulation(const Spec& spec) {
   for (std::size_t m = 0; m < spec.materials.size(); ++m)
     sim.rigid_material[m] = spec.materials[m].model == MaterialModel::Rigid ? 1 : 0;
   if (spec.contact.enabled) set_up_contact(spec, sim);
+  if (spec.heat.enabled) set_up_heat(spec, sim);
   return sim;
 }
 
@@ -153,7 +177,15 @@ double stable_time_step(const Simulation<D>& sim) {
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : fastest2)
   for (std::ptrdiff_t p = 0; p < n; ++p) fastest2 = std::max(fastest2, sim.particles.v[p].squaredNorm());
   speed = std::max(speed, std::sqrt(fastest2));
-  return sim.solver.courant * sim.grid.min_cell_size() / speed;
+  const double h = sim.grid.min_cell_size();
+  double dt = sim.solver.courant * h / speed;
+  // Explicit conduction: forward Euler on the lumped capacity is stable for dt < 2 / lambda_max.
+  // The mechanics' limit dt < C_crit h / c means lambda_max = 4 c^2 / (C_crit h)^2 per axis for
+  // the wave operator; the heat operator has the diffusivity a = kappa / (rho C_V) in place of c^2,
+  // summed over D axes, so dt = C^2 h^2 / (2 D a) keeps the same margin C / C_crit (squared).
+  if (sim.max_diffusivity > 0.0)
+    dt = std::min(dt, sim.solver.courant * sim.solver.courant * h * h / (2.0 * D * sim.max_diffusivity));
+  return dt;
 }
 
 void check_setup(const Spec& input) {

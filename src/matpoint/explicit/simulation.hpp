@@ -47,6 +47,14 @@ struct Simulation {
   std::vector<char> rigid_material;  // by material: 1 for the rigid model
   double friction_work = 0.0;        // kinetic energy removed by Coulomb friction, accumulated
 
+  // Coupled heat conduction (HeatSpec; explicit/heat_transport.hpp); particles.temperature holds T.
+  HeatSpec heat;                          // heat.enabled false: none of this is used
+  std::vector<double> heat_capacity;      // by material: C_V
+  std::vector<double> conductivity;       // by material: kappa
+  std::vector<double> expansion_modulus;  // by material: 3 K alpha (0: no thermoelastic coupling)
+  double max_diffusivity = 0.0;           // max kappa / (rho C_V): the conduction step limit
+  double boundary_heat = 0.0;             // heat in through the thermal conditions, accumulated
+
   double time = 0.0;
   long step = 0;
   double last_dt = 0.0;                      // the size of the last step taken (history.csv dt)

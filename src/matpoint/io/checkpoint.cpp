@@ -288,12 +288,14 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   for (const auto& c : ps.corners)
     for (const auto& x : c) corners.insert(corners.end(), x.data(), x.data() + D);
   w.write("particles/corners", corners, {h(ps.corners.size()), ParticleSet<D>::kCorners, D});
+  w.write("particles/temperature", ps.temperature, {h(ps.temperature.size())});  // coupled heat only
 
   w.write("simulation/time", sim.time);
   w.write("simulation/last_dt", sim.last_dt);
   w.write("simulation/step", std::int64_t{sim.step});
   w.write("simulation/external_work", sim.external_work);
   w.write("simulation/friction_work", sim.friction_work);
+  w.write("simulation/boundary_heat", sim.boundary_heat);
   w.write("simulation/external_impulse",
           std::vector<double>(sim.external_impulse.data(), sim.external_impulse.data() + D), {D});
   w.write("simulation/grid_momentum_difference",
@@ -354,12 +356,14 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   for (std::size_t p = 0; p < ps.corners.size(); ++p)
     for (int k = 0; k < ParticleSet<D>::kCorners; ++k)
       for (int a = 0; a < D; ++a) ps.corners[p][k][a] = corners[(p * ParticleSet<D>::kCorners + k) * D + a];
+  ps.temperature = r.doubles("particles/temperature", {sim.heat.enabled ? n : 0});
 
   sim.time = r.number("simulation/time");
   sim.last_dt = r.number("simulation/last_dt");
   sim.step = r.integer("simulation/step");
   sim.external_work = r.number("simulation/external_work");
   sim.friction_work = r.number("simulation/friction_work");
+  sim.boundary_heat = r.number("simulation/boundary_heat");
   const auto impulse = r.doubles("simulation/external_impulse", {D});
   for (int a = 0; a < D; ++a) sim.external_impulse[a] = impulse[a];
   const auto difference = r.doubles("simulation/grid_momentum_difference", {D});

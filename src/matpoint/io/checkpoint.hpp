@@ -19,7 +19,9 @@ namespace matpoint {
 
 inline constexpr const char* kCheckpointFile = "checkpoint.h5";
 inline constexpr const char* kPreviousCheckpointFile = "checkpoint.previous.h5";
-inline constexpr long kCheckpointFormatVersion = 3;  // 2: particles/stress_zz (plane strain); 3: history plastic_work
+// 2: particles/stress_zz (plane strain); 3: history plastic_work; 4: particles/temperature and
+// the heat through the thermal conditions (coupled heat conduction)
+inline constexpr long kCheckpointFormatVersion = 4;
 
 using PvdEntries = std::vector<std::pair<double, std::string>>;  // (time, file) of a .pvd collection
 

@@ -162,7 +162,7 @@ std::optional<json> parse_json(const std::string& text, Issues& issues) {
 Spec SpecReader::read(const json& root_json) {
   const Value root(&root_json, "", issues_, true);
   const Object top(root, {"title", "units", "grid", "mesh", "materials", "bodies", "boundary_conditions",
-                          "loads", "solver", "output", "checks", "contact"});
+                          "loads", "solver", "output", "checks", "contact", "heat"});
   if (!top.valid()) return std::move(spec_);
   set_if(spec_.title, top.optional("title").string());
   read_units(Object(top.optional("units"), {"length", "time", "mass", "stress", "energy"}));
@@ -203,6 +203,7 @@ Spec SpecReader::read(const json& root_json) {
                                               "checkpoint", "probes", "node_probes"}));
   read_checks(top.optional("checks"));
   read_contact(top.optional("contact"));
+  read_heat(top.optional("heat"));
   if (grid_ok_ && !spec_.mesh.enabled) check_stencil_fits();
   if (issues_.empty()) check_step_count();
   return std::move(spec_);

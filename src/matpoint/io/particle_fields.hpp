@@ -12,7 +12,7 @@ struct ParticleFieldInfo {
   std::string_view content;
 };
 
-inline constexpr std::array<ParticleFieldInfo, 16> kParticleFields{{
+inline constexpr std::array<ParticleFieldInfo, 17> kParticleFields{{
     {"velocity", "particle velocity"},
     {"displacement", "displacement u = x - X from the initial position"},
     {"stress", "Cauchy stress (3 x 3; in 2-D with the plane-strain sigma_zz)"},
@@ -29,6 +29,7 @@ inline constexpr std::array<ParticleFieldInfo, 16> kParticleFields{{
     {"von_mises", "von Mises stress sqrt(3/2 s : s), s = dev(sigma) of the 3 x 3 Cauchy stress"},
     {"plastic_strain", "equivalent plastic strain (plastic materials; 0 elsewhere)"},
     {"yield_state", "return of the last stress update: 0 elastic, 1 surface, 2 edge, 3 apex"},
+    {"temperature", "particle temperature (runs with a \"heat\" section only)"},
 }};
 
 [[nodiscard]] constexpr bool is_particle_field(std::string_view name) {

@@ -78,6 +78,10 @@ struct MaterialSpec {
   // default); a rigid material feels no stress and needs "contact" (docs/theory/contact.md).
   std::array<TimeFunction, 3> rigid_velocity{TimeFunction{{}, {0.0}}, TimeFunction{{}, {0.0}},
                                              TimeFunction{{}, {0.0}}};
+  // Coupled heat conduction (HeatSpec): heat capacity C_V (J/(kg K)), conductivity kappa
+  // (W/(m K)) and the linear thermal expansion coefficient alpha (1/K; linear_elastic and
+  // neo_hookean only). Read only when the input has a "heat" section.
+  double heat_capacity = 0, conductivity = 0, thermal_expansion = 0;
 };
 
 // GradedDisk: Aulisa & Capodaglio's disk of a uniform core and boundary layers refined towards the
@@ -347,6 +351,34 @@ struct ContactSpec {
   ContactFmpmMethod fmpm_method = ContactFmpmMethod::Net;
 };
 
+/// Coupled heat conduction in the explicit solver (Nairn 2026 §3.2.2, §3.5; docs/theory/heat.md):
+/// a temperature per particle, conducted on the grid with the nodal capacity sum_p M_p C_V S_pi,
+/// heated by friction and thermoelastic coupling. Off unless the input has a "heat" section.
+enum class HeatTransfer { FLIP, FMPM };  // T_p += S dT_i, or T_p = S T+(k) (transport FMPM(k))
+enum class ThermalConditionKind { Temperature, Flux };
+
+struct ThermalConditionSpec {
+  int face_axis = 0, face_side = 0;  // as VelocityConditionSpec's faces
+  ThermalConditionKind kind = ThermalConditionKind::Temperature;
+  double value = 0;  // the temperature, or the heat flux into the domain per unit face area
+};
+
+struct HeatSpec {
+  bool enabled = false;
+  double initial_temperature = 300;  // T0: every particle's initial and the reference temperature
+  bool conduction = true;            // false: adiabatic (no conduction; the sources stay local)
+  bool thermoelastic = true;         // heating -3 K alpha T tr(D) / (rho0 C_V) where alpha > 0
+  bool friction = true;              // contact's frictional work becomes heat at its nodes
+  HeatTransfer transfer = HeatTransfer::FLIP;
+  int fmpm_order = 2;  // transfer fmpm: k of the capacity series
+  // Optional sine added to T0: amplitude * sin(wave_vector . x + phase) (a conduction mode)
+  bool has_sine = false;
+  double sine_amplitude = 0;
+  Triple sine_wave_vector{};
+  double sine_phase = 0;
+  std::vector<ThermalConditionSpec> conditions;  // faces not listed: zero flux
+};
+
 struct Spec {
   std::string title;
   GridSpec grid;  // implicit runs: the mesh's bounding box and mean element size (particle seeding)
@@ -359,6 +391,7 @@ struct Spec {
   OutputSpec output;
   std::vector<CheckSpec> checks;
   ContactSpec contact;
+  HeatSpec heat;
   nlohmann::json echo;  // the input as read (comments stripped), echoed into summary.json
 };
 

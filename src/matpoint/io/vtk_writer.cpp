@@ -194,6 +194,8 @@ std::string particles_vtu(const ParticleSet<D>& ps, const std::vector<std::strin
                                return ps.plastic(p) ? ps.state[p * ps.state_stride + kEquivalentPlasticStrain]
                                                     : 0.0;
                              }));
+  if (wanted(fields, "temperature") && !ps.temperature.empty())
+    point_data << data.array("temperature", "Float64", 1, ps.temperature);
   if (wanted(fields, "yield_state")) {
     std::vector<std::int32_t> state(n, 0);
     for (std::size_t p = 0; p < n; ++p)

@@ -246,6 +246,7 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
   permute<D>(order, particles.body);
   permute<D>(order, particles.id);
   if (!particles.corners.empty()) permute<D>(order, particles.corners);
+  if (!particles.temperature.empty()) permute<D>(order, particles.temperature);
   if (particles.state_stride > 0) {
     const auto copy = particles.state;
     const int s = particles.state_stride;

@@ -37,6 +37,8 @@ struct ParticleSet {
   // +1 along axis a where bit a of c is set (tensor order: (-,-), (+,-), (-,+), (+,+) in 2-D).
   bool track_corners = false;
   std::vector<Corners> corners;
+  // Coupled heat conduction (io/spec.hpp HeatSpec): temperature per particle; empty when off.
+  std::vector<double> temperature;
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
   [[nodiscard]] bool plastic(std::size_t p) const {

@@ -102,4 +102,7 @@ constexpr std::array<Named<SoftStiffnessRule>, 2> kFlagRules{
     {{"paper", SoftStiffnessRule::Paper}, {"code", SoftStiffnessRule::Code}}};
 constexpr std::array<Named<bool>, 2> kInitialAccelerations{{{"zero", false}, {"body_force", true}}};
 
+constexpr std::array<Named<HeatTransfer>, 2> kHeatTransfers{
+    {{"flip", HeatTransfer::FLIP}, {"fmpm", HeatTransfer::FMPM}}};  // heat.transfer
+
 }  // namespace matpoint::input_detail

@@ -51,7 +51,10 @@ MaterialSpec SpecReader::read_material(const Value& v) {
                      "match",
                      "yield_stress",
                      "hardening_modulus",
-                     "johnson_cook"});
+                     "johnson_cook",
+                     "heat_capacity",
+                     "conductivity",
+                     "thermal_expansion"});
   MaterialSpec out;
   if (!m.valid()) {
     names_complete_ = false;
@@ -61,6 +64,7 @@ MaterialSpec SpecReader::read_material(const Value& v) {
   const auto model = m.required("model").choice(kModels);
   set_if(out.model, model);
   set_if(out.density, m.required("density").number(kPositive));
+  read_thermal(m, model, out);
   if (model) read_plasticity(m, *model, out);
   if (model == MaterialModel::MieGruneisen) return read_mie_gruneisen(m, out);
   if (model == MaterialModel::Rigid) {
@@ -247,6 +251,20 @@ void SpecReader::read_lame(const Object& m, MaterialSpec& out) {
   out.mu = *mu;
   out.youngs_modulus = *mu * (3 * *lambda + 2 * *mu) / (*lambda + *mu);
   out.poisson_ratio = *lambda / (2 * (*lambda + *mu));
+}
+
+/// Coupled heat (read_heat.cpp): C_V > 0, kappa >= 0, alpha >= 0 (the elastic models only);
+/// whether the input has a "heat" section is checked there.
+void SpecReader::read_thermal(const Object& m, std::optional<MaterialModel> model, MaterialSpec& out) {
+  set_if(out.heat_capacity, m.optional("heat_capacity").number(kPositive));
+  set_if(out.conductivity, m.optional("conductivity").number(kNonNegative));
+  const Value alpha = m.optional("thermal_expansion");
+  if (alpha.present() && model && *model != MaterialModel::LinearElastic &&
+      *model != MaterialModel::NeoHookean)
+    alpha.fail("no \"thermal_expansion\" for a " + std::string(name_of(kModels, *model)) +
+               " material (only linear_elastic and neo_hookean have thermal expansion)");
+  else
+    set_if(out.thermal_expansion, alpha.number(kNonNegative));
 }
 
 }  // namespace matpoint::input_detail

@@ -68,6 +68,9 @@ class SpecReader {
 
   static void read_lame(const Object& m, MaterialSpec& out);
 
+  /// heat_capacity, conductivity, thermal_expansion (coupled heat; read_materials.cpp).
+  static void read_thermal(const Object& m, std::optional<MaterialModel> model, MaterialSpec& out);
+
   // --- bodies ---
 
   void read_bodies(const Value& list);
@@ -209,6 +212,14 @@ class SpecReader {
   // --- contact (Nairn 2026 §3.2; docs/theory/contact.md) ---
 
   void read_contact(const Value& v);
+
+  // --- heat (read_heat.cpp): coupled heat conduction, explicit solver only ---
+
+  void read_heat(const Value& v);
+  void read_heat_sine(const Object& s);
+  void read_thermal_conditions(const Value& list);
+  /// Every material's thermal keys against the presence of the "heat" section.
+  void check_material_heat(bool heat) const;
 
   /// "law" (default "stick") and "friction" (Coulomb only, required there).
   static ContactLawSpec read_contact_law(const Object& c);
