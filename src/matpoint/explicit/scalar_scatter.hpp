@@ -1,19 +1,14 @@
 // Particle-to-grid transfer of one scalar per node (the transport quantities of coupled heat
 // conduction: nodal capacity, capacity-weighted temperature, heat flow; Nairn 2026 §3.5):
 //   out_i = sum_p contribution(p, S_pi, grad S_pi)
-// Race-free with threads in the same way as scatter_to_grid (scatter.hpp): each thread scatters
-// its contiguous block of cell-sorted particles into a private band of nodes, and the bands are
-// summed node by node in thread order (a given thread count always gives the same result).
+// Race-free with threads in the same way as scatter_to_grid (particle_blocks.hpp).
 #pragma once
 
 #include <algorithm>
 #include <vector>
 
+#include "matpoint/explicit/particle_blocks.hpp"
 #include "matpoint/grid/grid.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace matpoint {
 
@@ -33,10 +28,7 @@ void scatter_scalar(const Grid<D>& grid, const Stencils& stencils, std::size_t p
                     std::vector<double>& out, ScalarScatterWorkspace& ws, const Contribution& contribution) {
   const auto n = static_cast<std::ptrdiff_t>(particle_count);
   out.assign(static_cast<std::size_t>(grid.node_count), 0.0);
-  int threads = 1;
-#ifdef _OPENMP
-  threads = n <= kParallelMinimum ? 1 : omp_get_max_threads();
-#endif
+  const int threads = scatter_threads(n);
   if (threads == 1) {
     for (std::ptrdiff_t p = 0; p < n; ++p)
       stencils.for_each_node(
@@ -46,22 +38,12 @@ void scatter_scalar(const Grid<D>& grid, const Stencils& stencils, std::size_t p
   ws.bands.resize(threads);
 #pragma omp parallel num_threads(threads)
   {
-#ifdef _OPENMP
-    const int t = omp_get_thread_num();
-#else
-    const int t = 0;
-#endif
-    const std::ptrdiff_t begin = n * t / threads, end = n * (t + 1) / threads;
+    const int t = thread_number();
+    const ParticleBlock block = particle_block(grid, stencils, n, t, threads);
     auto& band = ws.bands[t];
-    band.lo = grid.node_count;
-    band.hi = -1;
-    for (std::ptrdiff_t p = begin; p < end; ++p) {
-      const auto [lo, hi] = stencils.node_span(grid, p);
-      band.lo = std::min(band.lo, lo);
-      band.hi = std::max(band.hi, hi);
-    }
-    band.values.assign(std::max<Index>(band.hi - band.lo + 1, 0), 0.0);
-    for (std::ptrdiff_t p = begin; p < end; ++p)
+    band.lo = block.lo, band.hi = block.hi;
+    band.values.assign(block.width(), 0.0);
+    for (std::ptrdiff_t p = block.begin; p < block.end; ++p)
       stencils.for_each_node(grid, p, [&](Index node, double N, const Vec<D>& dN) {
         band.values[node - band.lo] += contribution(p, N, dN);
       });

@@ -11,13 +11,10 @@
 #include <algorithm>
 #include <vector>
 
+#include "matpoint/explicit/particle_blocks.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/grid_fields.hpp"
 #include "matpoint/particles/particle_set.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace matpoint {
 
@@ -81,10 +78,7 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
                      const std::vector<Vec<D>>* body = nullptr) {
   const auto& u = velocity != nullptr ? *velocity : particles.v;
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
-  int threads = 1;
-#ifdef _OPENMP
-  threads = n <= kParallelMinimum ? 1 : omp_get_max_threads();
-#endif
+  const int threads = scatter_threads(n);
   if (threads == 1) {
     detail::zero_fields<D, What>(fields, 0, grid.node_count - 1);
     detail::scatter_range<D, What>(grid, stencils, particles, u, gravity, body, 0, n, 0, fields);
@@ -93,25 +87,16 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
   ws.bands.resize(threads);
 #pragma omp parallel num_threads(threads)
   {
-#ifdef _OPENMP
-    const int t = omp_get_thread_num();
-#else
-    const int t = 0;
-#endif
-    const std::ptrdiff_t begin = n * t / threads, end = n * (t + 1) / threads;
+    const int t = thread_number();
+    const ParticleBlock block = particle_block(grid, stencils, n, t, threads);
     auto& band = ws.bands[t];
-    band.lo = grid.node_count;
-    band.hi = -1;
-    for (std::ptrdiff_t p = begin; p < end; ++p) {
-      const auto [lo, hi] = stencils.node_span(grid, p);  // the nodes particle p touches lie in [lo, hi]
-      band.lo = std::min(band.lo, lo);
-      band.hi = std::max(band.hi, hi);
-    }
-    const Index width = std::max<Index>(band.hi - band.lo + 1, 0);
+    band.lo = block.lo, band.hi = block.hi;
+    const Index width = block.width();
     if constexpr ((What & kScatterMass) != 0) band.mass.assign(width, 0.0);
     if constexpr ((What & kScatterMomentum) != 0) band.momentum.assign(width, Vec<D>::Zero());
     if constexpr ((What & kScatterForce) != 0) band.force.assign(width, Vec<D>::Zero());
-    detail::scatter_range<D, What>(grid, stencils, particles, u, gravity, body, begin, end, band.lo, band);
+    detail::scatter_range<D, What>(grid, stencils, particles, u, gravity, body, block.begin, block.end,
+                                   band.lo, band);
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (Index i = 0; i < grid.node_count; ++i) {
