@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "matpoint/core/types.hpp"
@@ -73,7 +74,14 @@ class OneSidedBoundary {
  public:
   OneSidedBoundary() = default;
   explicit OneSidedBoundary(std::vector<OneSidedNode> nodes, int max_rounds = 10)
-      : nodes_(std::move(nodes)), max_rounds_(max_rounds) {}
+      : nodes_(std::move(nodes)), max_rounds_(max_rounds) {
+    for (std::size_t first = 0; first < nodes_.size();) {  // the walls: runs of nodes on one plane
+      std::size_t last = first + 1;
+      while (last < nodes_.size() && same_plane(nodes_[last].plane, nodes_[first].plane)) ++last;
+      walls_.emplace_back(first, last);
+      first = last;
+    }
+  }
 
   [[nodiscard]] bool empty() const { return nodes_.empty(); }
   [[nodiscard]] int max_rounds() const { return max_rounds_; }
@@ -84,15 +92,12 @@ class OneSidedBoundary {
     touching_.assign(nodes_.size(), 0);
     for (std::size_t p = 0; p < particles.size(); ++p) {
       const Vec<D>& x = particles.x[p];
-      for (std::size_t first = 0; first < nodes_.size();) {  // the walls: runs of nodes on one plane
+      for (const auto& [first, last] : walls_) {
         const WallPlane& plane = nodes_[first].plane;
-        std::size_t last = first + 1;
-        while (last < nodes_.size() && same_plane(nodes_[last].plane, plane)) ++last;
         const double reach =
             x[plane.axis] + plane.outward * particles.half_extent(p, Vec<D>::Unit(plane.axis));
         if ((reach - plane.position) * plane.outward >= 0.0)
           touching_[nearest(mesh_nodes, x, first, last)] = 1;
-        first = last;
       }
     }
     held_ = touching_;
@@ -144,6 +149,7 @@ class OneSidedBoundary {
   }
 
   std::vector<OneSidedNode> nodes_;
+  std::vector<std::pair<std::size_t, std::size_t>> walls_;  // [first, last) of nodes_ on one plane
   int max_rounds_ = 10;
   std::vector<char> touching_, held_;
 };
