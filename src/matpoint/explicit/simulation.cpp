@@ -150,7 +150,8 @@ Simulation<D> build_simulation(const Spec& spec) {
   sim.conditions = VelocityConditions<D>(spec.conditions, sim.grid);
   for (int a = 0; a < D; ++a) sim.gravity[a] = spec.loads.gravity[a];
   sim.solver = spec.solver;
-  const double heaviest = *std::max_element(sim.particles.mass.begin(), sim.particles.mass.end());
+  const double heaviest =  // an implicit run of FE bodies alone has no particles
+      sim.particles.size() == 0 ? 0.0 : *std::max_element(sim.particles.mass.begin(), sim.particles.mass.end());
   sim.mass_floor = spec.solver.mass_tolerance * heaviest;
   sim.significant_mass = std::max(sim.mass_floor, 1e-12 * heaviest);
   sim.rigid_material.assign(spec.materials.size(), 0);

@@ -3,12 +3,17 @@
 namespace matpoint::implicit {
 
 ActiveSet build_active_set(Index node_count, int nodes_per_element, std::span<const Index> connectivity,
-                           std::span<const Index> particle_element) {
+                           std::span<const Index> particle_element, std::span<const char> always_active) {
   const auto elements = static_cast<Index>(connectivity.size()) / nodes_per_element;
   ActiveSet s;
   s.particles_in_element.assign(static_cast<std::size_t>(elements), 0);
   for (const Index e : particle_element)
     if (e >= 0) ++s.particles_in_element[static_cast<std::size_t>(e)];
+  s.active.assign(static_cast<std::size_t>(elements), 0);
+  for (Index e = 0; e < elements; ++e) {
+    const auto k = static_cast<std::size_t>(e);
+    s.active[k] = s.particles_in_element[k] > 0 || (k < always_active.size() && always_active[k] != 0);
+  }
   s.node_active.assign(static_cast<std::size_t>(node_count), 0);
   s.node_touches_inactive.assign(static_cast<std::size_t>(node_count), 0);
   for (Index e = 0; e < elements; ++e) {

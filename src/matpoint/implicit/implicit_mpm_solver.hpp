@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -22,6 +23,7 @@
 #include "matpoint/analysis/probes.hpp"
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/simulation.hpp"
+#include "matpoint/fem/fe_output.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_stepper.hpp"
 #include "matpoint/implicit/step_size_control.hpp"
 #include "matpoint/io/checkpoint.hpp"
@@ -70,13 +72,14 @@ ParticleNewmarkOptions<D> stepper_options(const Spec& spec) {
 /// at `path` listing the mesh's names when there is none.
 template <class Sets>
 const typename Sets::mapped_type& named_boundary(const Sets& sets, const std::string& name,
-                                                 const std::string& path) {
+                                                 const std::string& path,
+                                                 const std::string& what = "a boundary of the mesh") {
   const auto it = sets.find(name);
   if (it == sets.end() || it->second.empty()) {
     std::string names;
     for (const auto& entry : sets) names += (names.empty() ? "\"" : ", \"") + entry.first + "\"";
-    throw InputError({{path, "\"" + name + "\"",
-                       "a boundary of the mesh: one of " + (names.empty() ? std::string("(none)") : names)}});
+    throw InputError(
+        {{path, "\"" + name + "\"", what + ": one of " + (names.empty() ? std::string("(none)") : names)}});
   }
   return it->second;
 }
@@ -126,11 +129,24 @@ class ImplicitMpmSolver {
           for (const auto& face : faces->second) receding[face] = c.receding;
     }
     collect_loaded_faces();
+    fem::FeBodies<E> fe = fe_bodies();
+    if (!fe.empty()) {
+      add_interface_receding(fe, receding);
+      for (const Index n : interface_nodes(fe)) on_condition[static_cast<std::size_t>(n)] = 1;  // A13
+      check_particles_outside(fe);
+    }
     auto options = stepper_options<D>(spec);
     options.one_sided = one_sided_nodes(spec);
     options.gravity = gravity_at(0.0);
     options.not_fully_active = on_condition;  // A13 (b): boundary nodes count as not fully active
-    stepper_.emplace(mesh_, implicit_materials(sim_), options, std::move(dirichlet), std::move(receding));
+    try {
+      stepper_.emplace(mesh_, implicit_materials(sim_), options, std::move(dirichlet), std::move(receding),
+                       std::move(fe));
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::runtime_error& error) {  // the reset extension (8b) has no unique solution
+      throw InputError({{"fe_bodies", "the mesh's background grid", error.what()}});
+    }
     stepper_->initialize(sim_.particles, state_);
     previous_x_ = sim_.particles.x;
     // output.node_probes: the node nearest each position (ties: the lowest index), as particle probes
@@ -168,6 +184,10 @@ class ImplicitMpmSolver {
     return out;
   }
   [[nodiscard]] const ImplicitTotals& totals() const { return totals_; }
+  /// The FE bodies' state (empty without fe_bodies).
+  [[nodiscard]] const fem::FeBodies<E>& fe_bodies_state() const { return stepper_->fe_bodies(); }
+  /// x~: where the particles are located (the FE bodies' nodes deformed, the background extended).
+  [[nodiscard]] const std::vector<Vec<D>>& reference_nodes() const { return stepper_->reference_nodes(); }
   /// The last Newton solve: status and residual history (tests print its convergence).
   [[nodiscard]] const NewtonResult& last_newton() const { return last_newton_; }
   /// The nodal displacement of the last step (node-major; the whole displacement in a single-step
@@ -176,7 +196,13 @@ class ImplicitMpmSolver {
 
   /// The next step: solver.dt, the schedule's, or the adaptive one (cut steps are retried
   /// inside step()).
-  [[nodiscard]] double time_step() const { return step_size_.next(sim_.time); }
+  [[nodiscard]] double time_step() const {
+    if (!step_size_.by_position()) return step_size_.next(sim_.time);
+    const int axis = spec_.solver.implicit.dt_position_axis;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const auto& x : sim_.particles.x) lowest = std::min(lowest, x[axis]);
+    return step_size_.next(sim_.time, lowest);
+  }
 
   /// Advances by h: one Newton solve, or after a failure 2, 4, ... sub-steps (at most
   /// max_step_cuts halvings); throws NumericalFailure when even the smallest sub-step fails.
@@ -222,6 +248,8 @@ class ImplicitMpmSolver {
     std::vector<std::string> columns{"newton_iterations", "newton_residual", "step_cuts"};
     for (const ProbeSpec& probe : spec_.output.node_probes)
       for (int a = 0; a < D; ++a) columns.push_back("node_" + probe.name + "_u" + "xyz"[a]);
+    for (const FeBodySpec& body : spec_.fe_bodies)
+      for (const char* what : {"_kinetic_energy", "_strain_energy"}) columns.push_back(body.name + what);
     return columns;
   }
   [[nodiscard]] std::vector<double> history_values() {
@@ -231,6 +259,10 @@ class ImplicitMpmSolver {
     const Eigen::VectorXd& u = stepper_->last_increment();
     for (Index node : probe_nodes_)
       for (int a = 0; a < D; ++a) row.push_back(u.size() > 0 ? u[node * D + a] : 0.0);
+    for (std::size_t b = 0; b < spec_.fe_bodies.size(); ++b) {
+      const auto [kinetic, strain] = fe_body_energies(static_cast<int>(b));
+      row.push_back(kinetic), row.push_back(strain);
+    }
     marks_.newton_iterations = totals_.newton_iterations;
     marks_.step_cuts = totals_.step_cuts;
     return row;
@@ -240,6 +272,12 @@ class ImplicitMpmSolver {
   void write_static_outputs(const std::filesystem::path& dir, std::string& part) const {
     part = "mesh.vtu";
     mesh::write_mesh_vtu<D>(dir / part, mesh_);
+  }
+
+  /// FE bodies: their elements at every particle output (fem/fe_output.hpp), "" without any.
+  [[nodiscard]] std::string frame_part_prefix() const { return spec_.fe_bodies.empty() ? "" : "fe_bodies_"; }
+  void write_frame(const std::filesystem::path& file) const {
+    fem::write_fe_bodies_vtu<E>(file, mesh_, stepper_->fe_bodies());
   }
 
   /// The checkpoint's solver state: the particle accelerations a^n and host elements (by storage
@@ -261,6 +299,16 @@ class ImplicitMpmSolver {
     for (const auto& [dof, force] : stepper_->reactions())
       reactions.insert(reactions.end(), {static_cast<double>(dof), force});
     c.solver_state["boundary_reactions"] = std::move(reactions);
+    if (spec_.fe_bodies.empty()) return;
+    const auto& fe = stepper_->fe_bodies();
+    std::vector<double> nodes, gauss;  // u, v, a per node; F per Gauss point (row-major)
+    for (const auto* field : {&fe.displacement, &fe.velocity, &fe.acceleration})
+      for (const auto& x : *field) nodes.insert(nodes.end(), x.data(), x.data() + D);
+    for (const auto& F : fe.F)
+      for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j) gauss.push_back(F(i, j));
+    c.solver_state["fe_nodes"] = std::move(nodes);
+    c.solver_state["fe_gauss_F"] = std::move(gauss);
   }
   /// Throws InputError when the checkpoint is not an implicit run's of these particles.
   void restore(const RunCounters& c) {
@@ -293,6 +341,20 @@ class ImplicitMpmSolver {
         reactions[static_cast<Index>(it->second[k])] = it->second[k + 1];
     stepper_->set_reactions(std::move(reactions));
     previous_x_ = sim_.particles.x;
+    if (spec_.fe_bodies.empty()) return;
+    auto& fe = stepper_->fe_bodies();
+    const std::size_t node_values = fe.displacement.size() * D;
+    const auto& nodes = get("fe_nodes", 3 * node_values);
+    const auto& gauss = get("fe_gauss_F", fe.F.size() * D * D);
+    std::size_t k = 0;
+    for (auto* field : {&fe.displacement, &fe.velocity, &fe.acceleration})
+      for (auto& x : *field)
+        for (int a = 0; a < D; ++a) x[a] = nodes[k++];
+    k = 0;
+    for (auto& F : fe.F)
+      for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j) F(i, j) = gauss[k++];
+    stepper_->restore_reference_nodes();
   }
 
   void add_facts(RunFacts& facts) const {
@@ -318,6 +380,13 @@ class ImplicitMpmSolver {
     s["solve_seconds"] = ls.solve_seconds;
     s["symbolic_analyses"] = ls.analyses;
     s["factorizations"] = ls.factorizations;
+    if (!spec_.fe_bodies.empty()) {
+      const auto& fe = stepper_->fe_bodies();
+      s["fe_elements"] = fe.element_count();
+      s["fe_gauss_points"] = fe.F.size();
+      s["fe_inertia"] =
+          spec_.fe_bodies[0].unit_inertia_density ? "unit density (the authors' code, A2)" : "physical";
+    }
     facts.implicit = std::move(s);
   }
 
@@ -330,6 +399,147 @@ class ImplicitMpmSolver {
     std::vector<ImplicitMaterial> out;
     for (const Material& m : sim.materials) out.emplace_back(m);  // the reader allows no other models
     return out;
+  }
+
+  /// The elements of fe_bodies[k]: its element set, or those whose centre lies in its region;
+  /// throws InputError when there are none.
+  std::vector<Index> fe_body_elements(std::size_t k) const {
+    const FeBodySpec& b = spec_.fe_bodies[k];
+    const std::string path = "fe_bodies[" + std::to_string(k) + "]";
+    if (!b.elements.empty())
+      return named_boundary(mesh_.element_sets, b.elements, path + ".elements",
+                            "an element set of the mesh (a Gmsh physical group of dimension dim)");
+    std::vector<Index> out;
+    for (Index e = 0; e < mesh_.element_count(); ++e) {
+      Vec<D> centre = Vec<D>::Zero();
+      for (const Index n : mesh_.element_nodes(e)) centre += mesh_.nodes[static_cast<std::size_t>(n)];
+      centre /= static_cast<double>(mesh_.nodes_per_element);
+      bool inside = true;
+      for (int a = 0; a < D; ++a)
+        inside = inside && centre[a] >= b.region_min[a] && centre[a] <= b.region_max[a];
+      if (inside) out.push_back(e);
+    }
+    if (out.empty())
+      throw InputError(
+          {{path + ".region", "the box given", "a box holding the centre of at least one mesh element"}});
+    return out;
+  }
+
+  fem::FeBodies<E> fe_bodies() const {
+    if (spec_.fe_bodies.empty()) return {};
+    std::vector<fem::FeBodyDefinition> bodies;
+    for (std::size_t k = 0; k < spec_.fe_bodies.size(); ++k) {
+      const FeBodySpec& b = spec_.fe_bodies[k];
+      fem::FeBodyDefinition d;
+      d.elements = fe_body_elements(k);
+      d.material = b.material;
+      d.density = spec_.materials[static_cast<std::size_t>(b.material)].density;
+      d.inertia_density = b.unit_inertia_density ? 1.0 : d.density;
+      d.gravity = b.gravity;
+      bodies.push_back(std::move(d));
+    }
+    return fem::FeBodies<E>(mesh_, bodies);
+  }
+
+  /// FE nodes that also belong to a background element (the interface Γ).
+  std::vector<Index> interface_nodes(const fem::FeBodies<E>& fe) const {
+    std::vector<char> background(static_cast<std::size_t>(mesh_.node_count()), 0);
+    for (Index e = 0; e < mesh_.element_count(); ++e)
+      if (fe.element_mask()[static_cast<std::size_t>(e)] == 0)
+        for (const Index n : mesh_.element_nodes(e)) background[static_cast<std::size_t>(n)] = 1;
+    std::vector<Index> out;
+    for (Index n = 0; n < mesh_.node_count(); ++n)
+      if (background[static_cast<std::size_t>(n)] != 0 && fe.node_mask()[static_cast<std::size_t>(n)] != 0)
+        out.push_back(n);
+    return out;
+  }
+
+  /// C_c (fe_bodies[k].interface_receding) on every face of a background element whose nodes all
+  /// belong to body k's elements: the interface Γ_a of the receding correction (§5).
+  void add_interface_receding(const fem::FeBodies<E>& fe,
+                              std::map<std::pair<Index, int>, double>& receding) const {
+    std::map<int, double> body_receding;  // C_c per FE body with interface_receding > 0
+    for (std::size_t b = 0; b < spec_.fe_bodies.size(); ++b)
+      if (spec_.fe_bodies[b].interface_receding > 0)
+        body_receding.emplace(static_cast<int>(b), spec_.fe_bodies[b].interface_receding);
+    if (body_receding.empty()) return;
+    std::vector<int> node_body(static_cast<std::size_t>(mesh_.node_count()), -1);
+    for (Index k = 0; k < fe.element_count(); ++k)
+      for (const Index n : mesh_.element_nodes(fe.mesh_element(k)))
+        node_body[static_cast<std::size_t>(n)] = fe.body_of(k);
+    for (Index e = 0; e < mesh_.element_count(); ++e) {
+      if (fe.element_mask()[static_cast<std::size_t>(e)] != 0) continue;
+      const auto nodes = mesh_.element_nodes(e);
+      for (int f = 0; f < E::kFaces; ++f) {
+        const auto face = E::faces()[static_cast<std::size_t>(f)];
+        const int body = node_body[static_cast<std::size_t>(nodes[static_cast<std::size_t>(face[0])])];
+        bool shared = body >= 0;
+        for (const int local : face)
+          shared =
+              shared && node_body[static_cast<std::size_t>(nodes[static_cast<std::size_t>(local)])] == body;
+        if (shared)
+          if (const auto it = body_receding.find(body); it != body_receding.end())
+            receding[{e, f}] = it->second;
+      }
+    }
+  }
+
+  /// Throws InputError naming the body when a particle lies inside an FE body's element (§4: the
+  /// FE mesh carries the background grid; no particle may be in it).
+  void check_particles_outside(const fem::FeBodies<E>& fe) const {
+    mesh::PointLocator<D> all(mesh_, mesh_.nodes), background(mesh_, mesh_.nodes);
+    background.exclude(fe.element_mask());
+    for (std::size_t p = 0; p < sim_.particles.size(); ++p) {
+      const Vec<D>& x = sim_.particles.x[p];
+      if (background.locate(x) || !all.locate(x)) continue;
+      const auto b = static_cast<std::size_t>(sim_.particles.body[p]);
+      throw InputError(
+          {{"bodies[" + std::to_string(b) + "].shape", "a particle at " + vec_text(x),
+            "a body outside the elements of the fe_bodies (a particle can not be inside an FE body)"}});
+    }
+  }
+  static std::string vec_text(const Vec<D>& x) {
+    std::ostringstream s;
+    s << '(' << x[0];
+    for (int a = 1; a < D; ++a) s << ", " << x[a];
+    s << ')';
+    return s.str();
+  }
+
+  /// Kinetic energy 1/2 sum_g m_g |sum_I N_I v_I|^2 (the consistent mass) and strain energy
+  /// sum_g V0_g W(F_g) of FE body b (1/2 sigma : eps with kinematics "small": plane strain's
+  /// sigma_zz does no work, eps_zz = 0).
+  [[nodiscard]] std::pair<double, double> fe_body_energies(int b) const {
+    const auto& fe = stepper_->fe_bodies();
+    const auto& rule = fem::fe_gauss_rule<E>();
+    const auto per = static_cast<Index>(rule.points.size());
+    double kinetic = 0.0, strain = 0.0;
+    for (Index k = 0; k < fe.element_count(); ++k) {
+      if (fe.body_of(k) != b) continue;
+      const auto nodes = mesh_.element_nodes(fe.mesh_element(k));
+      for (Index i = 0; i < per; ++i) {
+        const auto g = static_cast<std::size_t>(k * per + i);
+        const auto N = E::values(rule.points[static_cast<std::size_t>(i)]);
+        Vec<D> v = Vec<D>::Zero();
+        for (int I = 0; I < E::kNodes; ++I)
+          v += N[I] * fe.velocity[static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)])];
+        kinetic += 0.5 * fe.mass[g] * v.squaredNorm();
+        if (spec_.solver.implicit.small_strain) {  // Hooke's energy 1/2 sigma : eps, as the residual
+          const Mat<D> eps = 0.5 * (fe.F[g] + fe.F[g].transpose()) - Mat<D>::Identity();
+          strain += fe.volume0[g] * 0.5 * fe.stress[g].cwiseProduct(eps).sum();
+          continue;
+        }
+        strain += fe.volume0[g] * std::visit(
+                                      [&](const auto& model) {
+                                        if constexpr (requires { std::decay_t<decltype(model)>::state_size; })
+                                          return 0.0;  // plastic models are refused for FE bodies
+                                        else
+                                          return model.template energy_density<D>(fe.F[g]);
+                                      },
+                                      sim_.materials[static_cast<std::size_t>(fe.material[g])]);
+      }
+    }
+    return {kinetic, strain};
   }
 
   /// loads.gravity times loads.gravity_scale at time t.

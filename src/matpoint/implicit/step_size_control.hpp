@@ -1,5 +1,6 @@
 // The time step of an implicit run (docs/input.md "Implicit runs"): solver.dt held fixed, a user
-// schedule dt(t) read at each step's start (solver.implicit.dt_schedule), or adaptive on Newton's
+// schedule dt(t) read at each step's start (solver.implicit.dt_schedule), dt of the lowest particle's
+// coordinate (solver.implicit.dt_by_position: Aulisa & Capodaglio's Test D), or adaptive on Newton's
 // iteration count (solver.implicit.adaptive_dt). The adaptive rule, applied after each completed
 // step:
 //   - the step needed c > 0 cuts: the next step is the sub-step that converged, dt / 2^c;
@@ -20,11 +21,19 @@ class StepSizeControl {
  public:
   explicit StepSizeControl(const SolverSpec& solver)
       : schedule_(solver.implicit.dt_schedule),
+        by_position_(solver.implicit.dt_by_position),
         adaptive_(solver.implicit.adaptive),
         dt_(solver.dt.value_or(schedule_ ? (*schedule_)(0.0) : 0.0)) {}
 
-  /// The step to take from `time`.
-  [[nodiscard]] double next(double time) const { return schedule_ ? (*schedule_)(time) : dt_; }
+  /// Whether next() reads the lowest particle's coordinate.
+  [[nodiscard]] bool by_position() const { return by_position_.has_value(); }
+
+  /// The step to take from `time`; `lowest`: the lowest particle's coordinate along
+  /// solver.implicit.dt_position_axis (read with dt_by_position only).
+  [[nodiscard]] double next(double time, double lowest = 0.0) const {
+    if (by_position_) return (*by_position_)(lowest);
+    return schedule_ ? (*schedule_)(time) : dt_;
+  }
 
   /// After a completed step that was tried at `dt_tried` (the run loop's, possibly shortened),
   /// needed `cuts` halvings, and whose Newton solves took at most `iterations`.
@@ -44,7 +53,7 @@ class StepSizeControl {
   void restore(double dt) { dt_ = dt; }
 
  private:
-  std::optional<TimeFunction> schedule_;
+  std::optional<TimeFunction> schedule_, by_position_;
   ImplicitSpec::Adaptive adaptive_;
   double dt_;
 };

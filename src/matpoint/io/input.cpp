@@ -162,7 +162,7 @@ std::optional<json> parse_json(const std::string& text, Issues& issues) {
 Spec SpecReader::read(const json& root_json) {
   const Value root(&root_json, "", issues_, true);
   const Object top(root, {"title", "units", "grid", "mesh", "materials", "bodies", "boundary_conditions",
-                          "loads", "solver", "output", "checks", "contact", "heat"});
+                          "loads", "solver", "output", "checks", "contact", "heat", "fe_bodies"});
   if (!top.valid()) return std::move(spec_);
   set_if(spec_.title, top.optional("title").string());
   read_units(Object(top.optional("units"), {"length", "time", "mass", "stress", "energy"}));
@@ -170,11 +170,11 @@ Spec SpecReader::read(const json& root_json) {
     top.optional("grid").fail("no grid with a mesh (an implicit run's particles are seeded on its mesh)");
   else if (top.has("mesh"))
     read_mesh(
-        Object(top.required("mesh"), {"element", "min", "max", "cells", "ratio", "diagonal", "refine", "file", "dim"}));
+        Object(top.required("mesh"), {"element", "min", "max", "cells", "ratio", "lines", "diagonal", "refine", "file", "dim"}));
   else
     read_grid(Object(top.required("grid"), {"dim", "min", "max", "cell_size"}));
   read_materials(top.required("materials"));
-  read_bodies(top.required("bodies"));
+  read_bodies(top.required("bodies"), top.has("fe_bodies") ? 0 : 1);
   read_conditions(top.optional("boundary_conditions"));
   read_loads(Object(top.optional("loads"), {"gravity", "gravity_scale", "tractions"}));
   read_solver(Object(top.required("solver"), {"scheme",
@@ -204,6 +204,7 @@ Spec SpecReader::read(const json& root_json) {
   read_checks(top.optional("checks"));
   read_contact(top.optional("contact"));
   read_heat(top.optional("heat"));
+  read_fe_bodies(top.optional("fe_bodies"));
   if (grid_ok_ && !spec_.mesh.enabled) check_stencil_fits();
   if (issues_.empty()) check_step_count();
   return std::move(spec_);

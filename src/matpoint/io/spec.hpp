@@ -161,6 +161,7 @@ struct MeshSpec {
   Triple min{}, max{};
   std::array<int, 3> cells{};  // coarse elements per direction
   Triple ratio{1, 1, 1};       // geometric growth of the element size along each axis
+  std::array<std::vector<double>, 3> lines;  // mesh.lines: the coarse lines per axis (then min, max, cells follow)
   int refine = 0;              // uniform midpoint refinements
   std::string file;            // a Gmsh .msh file instead of the structured mesh
   mesh::TrianglePattern diagonal = mesh::TrianglePattern::Alternating;  // T3: how the cells are split
@@ -174,6 +175,19 @@ struct SurfaceLoadSpec {
   std::string boundary;
   std::optional<TimeFunction> pressure;
   std::array<std::optional<TimeFunction>, 3> traction;  // components (absent: 0) when no pressure
+};
+
+/// fe_bodies[k] of an implicit run (Aulisa & Capodaglio §4; fem/fe_body.hpp): mesh elements that
+/// form a total-Lagrangian finite element body instead of background grid: those of a mesh element
+/// set (a Gmsh physical group of dimension dim) or those whose centre lies in [region_min, region_max].
+struct FeBodySpec {
+  std::string name;
+  std::string elements;  // a mesh element set; empty: region
+  Triple region_min{}, region_max{};
+  int material = 0;
+  bool gravity = true;                // the body takes loads.gravity (the paper's coupled tests: false)
+  bool unit_inertia_density = false;  // "inertia": "unit_density": the authors' code's FEM inertia (A2)
+  double interface_receding = 0.0;    // C_c of the background faces on the body (§5, eq. (47))
 };
 
 struct LoadSpec {
@@ -239,6 +253,10 @@ struct ImplicitSpec {
   // Time-step control: solver.dt (fixed), or a user schedule dt(t) taken at each step's start, or
   // adaptive on Newton's iteration count (implicit/step_size_control.hpp).
   std::optional<TimeFunction> dt_schedule;
+  // Or dt as a function of the lowest particle's coordinate along dt_position_axis, read at each
+  // step's start (solver.implicit.dt_by_position: the step near a plate, Aulisa & Capodaglio Test D, A18).
+  std::optional<TimeFunction> dt_by_position;
+  int dt_position_axis = 1;
   struct Adaptive {
     bool enabled = false;
     double min = 0, max = 0;  // dt bounds
@@ -385,6 +403,7 @@ struct Spec {
   MeshSpec mesh;
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
+  std::vector<FeBodySpec> fe_bodies;  // implicit runs only
   std::vector<VelocityConditionSpec> conditions;
   LoadSpec loads;
   SolverSpec solver;

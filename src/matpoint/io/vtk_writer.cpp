@@ -273,14 +273,24 @@ void PvdCollection::set_static_part(std::string dataset_file) {
   if (!entries_.empty()) write();
 }
 
+void PvdCollection::set_companion_prefix(std::string prefix) {
+  companion_prefix_ = std::move(prefix);
+  if (!entries_.empty()) write();
+}
+
 void PvdCollection::write() const {
   std::ostringstream out;
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   out << std::setprecision(17);
   for (const auto& [t, file] : entries_) {
     out << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << file << "\"/>\n";
+    int part = 1;
     if (!static_part_.empty())
-      out << "    <DataSet timestep=\"" << t << "\" part=\"1\" file=\"" << static_part_ << "\"/>\n";
+      out << "    <DataSet timestep=\"" << t << "\" part=\"" << part++ << "\" file=\"" << static_part_
+          << "\"/>\n";
+    if (!companion_prefix_.empty())
+      out << "    <DataSet timestep=\"" << t << "\" part=\"" << part << "\" file=\"" << companion_prefix_
+          << file.substr(file.find('_') + 1) << "\"/>\n";
   }
   out << "  </Collection>\n</VTKFile>\n";
   write_file_atomically(file_, out.str());

@@ -37,12 +37,17 @@ class PvdCollection {
   /// A dataset that does not change (an implicit run's element mesh): listed as part 1 beside
   /// every entry's part 0, so ParaView shows it at every time.
   void set_static_part(std::string dataset_file);
+  /// A dataset written at every output beside the particles (an implicit run's FE bodies): listed
+  /// after the others with each entry's file name, its prefix up to the first '_' replaced by `prefix`
+  /// ("particles_000012.vtu" -> "fe_bodies_000012.vtu").
+  void set_companion_prefix(std::string prefix);
 
  private:
   void write() const;
   std::filesystem::path file_;
   std::vector<std::pair<double, std::string>> entries_;
   std::string static_part_;
+  std::string companion_prefix_;
 };
 
 }  // namespace matpoint

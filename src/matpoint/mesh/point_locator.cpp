@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "matpoint/mesh/inverse_map.hpp"
 
@@ -30,6 +31,12 @@ void PointLocator<D>::update(std::span<const Vec<D>> node_coordinates) {
   if (static_cast<Index>(node_coordinates.size()) != mesh_->node_count())
     throw std::invalid_argument("PointLocator: one coordinate per mesh node expected");
   coordinates_.assign(node_coordinates.begin(), node_coordinates.end());
+  build_bins();
+}
+
+template <int D>
+void PointLocator<D>::exclude(std::vector<char> excluded) {
+  excluded_ = std::move(excluded);
   build_bins();
 }
 
@@ -103,6 +110,8 @@ void PointLocator<D>::fill_bins() {
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<Index> cursor(bin_start_.begin(), bin_start_.end() - 1);
     for (Index e = 0; e < mesh_->element_count(); ++e) {
+      if (static_cast<std::size_t>(e) < excluded_.size() && excluded_[static_cast<std::size_t>(e)] != 0)
+        continue;
       const auto range = bin_range(e);
       std::array<int, D> i{};
       for (int a = 0; a < D; ++a) i[a] = range[a].first;

@@ -38,6 +38,11 @@ class PointLocator {
   /// Rebuilds the bins for new node coordinates of the same mesh.
   void update(std::span<const Vec<D>> node_coordinates);
 
+  /// Elements never to return (per element, 1: excluded), e.g. the elements of FE bodies, which no
+  /// particle may enter (Aulisa & Capodaglio §4): a point on a face they share with a background
+  /// element goes to the background element. Rebuilds the bins.
+  void exclude(std::vector<char> excluded);
+
   /// Host element and local coordinates; the lowest element id on shared faces; nullopt outside the
   /// mesh. A `hint` element (e.g. the previous host) is tried first and kept when the point lies
   /// inside it by more than the tolerance (then no other element can hold it).
@@ -68,6 +73,7 @@ class PointLocator {
   Vec<D> origin_, bin_size_;
   std::array<int, D> bins_{};
   std::vector<Index> bin_start_, bin_elements_;  // CSR: elements of bin b in ascending id order
+  std::vector<char> excluded_;                   // per element (empty: none)
 };
 
 extern template class PointLocator<2>;

@@ -15,6 +15,9 @@
 //   void write_static_outputs(const std::filesystem::path& dir, std::string& part);
 //                                  files written once (an element mesh); `part`: the one shown
 //                                  in results.pvd beside the particles ("" for none)
+// and optionally
+//   std::string frame_part_prefix() const;     a file written at every particle output ("" none)
+//   void write_frame(const std::filesystem::path& file) const;   writes it (an FE body's mesh)
 #pragma once
 
 #include <algorithm>
@@ -170,6 +173,10 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
     std::string part;
     solver.write_static_outputs(options.out_dir, part);
     if (!part.empty()) outputs.add_static_part(part);
+    if constexpr (requires { solver.frame_part_prefix(); })
+      if (const std::string prefix = solver.frame_part_prefix(); !prefix.empty())
+        outputs.add_frame_part(prefix,
+                               [&solver](const std::filesystem::path& file) { solver.write_frame(file); });
   }
 
   OutputSchedule schedule(spec.output, sim.time, run.next_output_time);

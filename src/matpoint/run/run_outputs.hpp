@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -168,6 +169,8 @@ class RunOutputs {
                             particles_vtu(sim.particles, spec_.output.fields, &sim.initial_position,
                                           state_component_names(sim)));
       pvd_.add(sim.time, name);
+      if (frame_writer_)
+        frame_writer_(out_dir_ / run_outputs_detail::output_name(outputs_, frame_prefix_.c_str()));
       if (write_domains_) {
         const std::string domains = run_outputs_detail::output_name(outputs_, "domains_");
         const auto corners = particle_domains<D>(spec_.solver.shape, sim.grid, sim.particles);
@@ -181,6 +184,14 @@ class RunOutputs {
   /// A dataset shown at every output time beside the particles (results.pvd part 1): an implicit
   /// run's element mesh, written once.
   void add_static_part(const std::string& file) { pvd_.set_static_part(file); }
+
+  /// A dataset the solver writes at every particle output (an implicit run's FE bodies), as
+  /// `prefix` + the output's number; results.pvd lists it beside the particles.
+  void add_frame_part(std::string prefix, std::function<void(const std::filesystem::path&)> writer) {
+    pvd_.set_companion_prefix(prefix);
+    frame_prefix_ = std::move(prefix);
+    frame_writer_ = std::move(writer);
+  }
 
   void write_history() {
     write_file_atomically(out_dir_ / "history.csv", history_.csv());
@@ -201,6 +212,8 @@ class RunOutputs {
   int body_count_;
   std::vector<long> probe_ids_;
   PvdCollection pvd_, domains_pvd_;
+  std::string frame_prefix_;
+  std::function<void(const std::filesystem::path&)> frame_writer_;
   bool write_domains_;
   long outputs_;
   std::chrono::steady_clock::time_point last_history_write_ =

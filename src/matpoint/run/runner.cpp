@@ -113,8 +113,11 @@ mesh::Mesh<D> build_mesh(const MeshSpec& m) {
     std::array<mesh::AxisSpacing, 3> axes;
     for (int a = 0; a < D; ++a) {
       auto& axis = axes[static_cast<std::size_t>(a)];
-      axis =
-          mesh::AxisSpacing::geometric(m.min[a], m.max[a], m.cells[static_cast<std::size_t>(a)], m.ratio[a]);
+      const auto& lines = m.lines[static_cast<std::size_t>(a)];
+      if (!lines.empty())
+        axis.breaks = lines;  // mesh.lines
+      else
+        axis = mesh::AxisSpacing::geometric(m.min[a], m.max[a], m.cells[static_cast<std::size_t>(a)], m.ratio[a]);
       if (triangles) axis = axis.refined(m.refine);
     }
     if constexpr (D == 2) {

@@ -19,6 +19,10 @@
 //   4. the grid is reset to 0 (nothing to keep: u~ lives only inside the step).
 // Particle data: matpoint's ParticleSet<D> (x, v, mass, volume0, F, stress, material) plus the
 // implicit extras (acceleration, host element, xi).
+// FE bodies (fem/fe_body.hpp, Aulisa & Capodaglio §4) join the same system: their elements are
+// always active, their Gauss points are quadrature points of fixed host and xi, their nodes keep
+// u, v, a (nodal Newmark, eq. (46)), and x~ of their nodes is the deformed position at the step
+// start (the reference configuration of eqs. (2), (8a)); no particle is located in them.
 #pragma once
 
 #include <chrono>
@@ -29,6 +33,8 @@
 #include <utility>
 #include <vector>
 
+#include "matpoint/fem/fe_body.hpp"
+#include "matpoint/fem/reset_extension.hpp"
 #include "matpoint/implicit/linear_solver.hpp"
 #include "matpoint/implicit/newton.hpp"
 #include "matpoint/implicit/one_sided_boundary.hpp"
@@ -92,16 +98,25 @@ class ParticleNewmarkStepper {
   /// (element, local face) pairs on Dirichlet faces (§5; empty: no correction).
   ParticleNewmarkStepper(const mesh::Mesh<D>& mesh, std::vector<Material> materials,
                          ParticleNewmarkOptions<D> options, std::vector<char> dirichlet,
-                         std::map<std::pair<Index, int>, double> receding = {})
+                         std::map<std::pair<Index, int>, double> receding = {},
+                         fem::FeBodies<E> fe_bodies = {})
       : mesh_(mesh),
         materials_(std::move(materials)),
         options_(std::move(options)),
         dirichlet_(std::move(dirichlet)),
         receding_(std::move(receding)),
+        reference_(mesh.nodes),
         locator_(mesh, mesh.nodes),
         solver_(make_linear_solver(options_.linear)),
-        one_sided_(std::move(options_.one_sided), options_.max_one_sided_rounds) {
+        one_sided_(std::move(options_.one_sided), options_.max_one_sided_rounds),
+        fe_(std::move(fe_bodies)) {
     options_.newton.components = D;
+    if (fe_.empty()) return;
+    if (options_.initial_acceleration_from_body_force) fe_.start_from_body_force(mesh_, options_.gravity);
+    locator_.exclude(fe_.element_mask());
+    std::vector<char> background(fe_.element_mask().size());
+    for (std::size_t e = 0; e < background.size(); ++e) background[e] = fe_.element_mask()[e] == 0 ? 1 : 0;
+    extension_.emplace(mesh_, fe_.node_mask(), dirichlet_, background);
   }
 
   /// Sizes the implicit extras and sets a^0 (A17).
@@ -115,6 +130,18 @@ class ParticleNewmarkStepper {
   StepReport step(ParticleSet<D>& particles, ImplicitParticleState<D>& state, double dt);
 
   [[nodiscard]] const LinearSolver& linear_solver() const { return *solver_; }
+  /// The FE bodies' state (Gauss points, nodes); empty without FE bodies.
+  [[nodiscard]] const fem::FeBodies<E>& fe_bodies() const { return fe_; }
+  fem::FeBodies<E>& fe_bodies() { return fe_; }
+  /// x~: the mesh's nodes, but those of FE bodies at their deformed position of the step start.
+  [[nodiscard]] const std::vector<Vec<D>>& reference_nodes() const { return reference_; }
+  /// After a restart: x~ from the FE bodies' nodal displacements.
+  void restore_reference_nodes() {
+    if (fe_.empty()) return;
+    for (std::size_t n = 0; n < reference_.size(); ++n) reference_[n] = mesh_.nodes[n] + fe_.displacement[n];
+    extension_->apply(fe_.displacement, reference_);
+    locator_.update(reference_);
+  }
   /// The nodal u~ of the last completed step (node-major, D per node; empty before the first).
   [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
   /// The body force per unit mass of the next steps (loads.gravity_scale changes it in time).
@@ -139,7 +166,23 @@ class ParticleNewmarkStepper {
   void build_quadrature(const ParticleSet<D>& particles, const ImplicitParticleState<D>& state,
                         const NewmarkCoefficients& c);
   void commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state, const Eigen::VectorXd& u,
-              double dt) const;
+              double dt);
+  /// The velocity at t^n behind each face of background element e: an FE body's, taken at the
+  /// face's last node (a Q9 face's mid-side node, as the authors' code, A4), or 0.
+  FaceVelocities<E> interface_velocities(Index e) const {
+    FaceVelocities<E> out = walls_at_rest<E>();
+    if constexpr (D == 2) {
+      const auto nodes = mesh_.element_nodes(e);
+      for (int f = 0; f < E::kFaces; ++f) {
+        const auto face = E::faces()[static_cast<std::size_t>(f)];
+        const auto n = static_cast<std::size_t>(nodes[static_cast<std::size_t>(face.back())]);
+        if (fe_.node_mask()[n] != 0) out[static_cast<std::size_t>(f)] = fe_.velocity[n];
+      }
+    }
+    return out;
+  }
+  /// F and stress of the FE Gauss point at quadrature entry qo (its element: the block holding qo).
+  void commit_gauss_point(std::size_t qo, const Eigen::VectorXd& u, double dt);
 
   /// The work of the moving conditions over the converged step, sum_d (f_d^n + f_d^{n+1}) / 2 u~_d with
   /// f_d the reaction (the unconstrained residual of dof d; 0 before the first step, a body at rest
@@ -178,6 +221,7 @@ class ParticleNewmarkStepper {
   ParticleNewmarkOptions<D> options_;
   std::vector<char> dirichlet_;
   std::map<std::pair<Index, int>, double> receding_;
+  std::vector<Vec<D>> reference_;  // x~ (eq. (2)): where the particles are located and gradients taken
   mesh::PointLocator<D> locator_;
   std::unique_ptr<LinearSolver> solver_;
   ActiveSet set_;
@@ -191,6 +235,8 @@ class ParticleNewmarkStepper {
   std::vector<FaceLoad<D>> loads_end_, loads_start_;
   OneSidedBoundary<D> one_sided_;
   std::vector<char> round_dirichlet_;  // dirichlet_ with the one-sided dofs as held this round
+  fem::FeBodies<E> fe_;
+  std::optional<fem::ResetExtension<E>> extension_;  // with FE bodies: the background's x~ (8b)
 };
 
 template <class E, class Material>
@@ -261,18 +307,29 @@ void ParticleNewmarkStepper<E, Material>::build_quadrature(const ParticleSet<D>&
   element_receding_.assign(set_.active_elements.size(), FaceCoefficients<E>{});
   for (std::size_t k = 0; k < set_.active_elements.size(); ++k) {
     const Index e = set_.active_elements[k];
-    const NodeMatrix<E> x = gather_nodes<E>(mesh_.nodes, mesh_.element_nodes(e));
+    // x~; the undeformed mesh under small strain (geometrically linear: FE bodies too)
+    const NodeMatrix<E> x =
+        gather_nodes<E>(options_.small_strain ? mesh_.nodes : reference_, mesh_.element_nodes(e));
+    if (!fe_.empty() && fe_.fe_element(e) >= 0) {  // an FE element: its Gauss points
+      fe_.add_quadrature(fe_.fe_element(e), x, mesh_.element_nodes(e), c, options_.static_analysis,
+                         options_.gravity, q_);
+      q_.close_block();
+      continue;
+    }
     bool any_face = false;
     for (int f = 0; f < E::kFaces; ++f)
       if (const auto it = receding_.find({e, f}); it != receding_.end()) {
         element_receding_[k][static_cast<std::size_t>(f)] = it->second;
         any_face = true;
       }
+    FaceVelocities<E> walls = walls_at_rest<E>();
+    if constexpr (RecedingStencil<E>::kSupported)
+      if (any_face && !fe_.empty()) walls = interface_velocities(e);
     for (Index o = sorted.begin[k]; o < sorted.begin[k + 1]; ++o) {
       const auto p = static_cast<std::size_t>(sorted.order[static_cast<std::size_t>(o)]);
       std::uint32_t bits = 0;
       if constexpr (RecedingStencil<E>::kSupported)
-        if (any_face) bits = receding_switches<E>(x, element_receding_[k], particles.v[p]);
+        if (any_face) bits = receding_switches<E>(x, element_receding_[k], particles.v[p], walls);
       q_.add(static_cast<Index>(p), state.xi[p], x, particles.mass[p], particles.volume0[p],
              particles.material[p], particles.F[p],
              known_acceleration(particles, state, p, c) - options_.gravity, bits,
@@ -293,14 +350,16 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
     return report;
   }
   // Active set, flags, quadrature, system (fixed for the Newton iterations).
-  set_ = build_active_set(mesh_.node_count(), mesh_.nodes_per_element, mesh_.connectivity, state.element);
+  set_ = build_active_set(mesh_.node_count(), mesh_.nodes_per_element, mesh_.connectivity, state.element,
+                          fe_.empty() ? std::span<const char>{} : std::span<const char>(fe_.element_mask()));
   report.active_elements = static_cast<Index>(set_.active_elements.size());
   const NewmarkCoefficients c(options_.newmark, dt);
   if (options_.newmark_at_grid && !options_.static_analysis) project_to_nodes(particles, state);
   build_quadrature(particles, state, c);
   typename ParticleNewmarkSystem<E, Material>::StepData data;
   data.mesh = &mesh_;
-  data.reference_nodes = mesh_.nodes;
+  data.reference_nodes =
+      options_.small_strain ? std::span<const Vec<D>>(mesh_.nodes) : std::span<const Vec<D>>(reference_);
   data.set = &set_;
   data.quadrature = &q_;
   data.materials = materials_;
@@ -310,6 +369,10 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   data.soft_stiffness.resize(ce.size());
   for (std::size_t k = 0; k < ce.size(); ++k) {
     double mu = 0.0;  // the shear modulus of the element's MPM body: the largest among its particles
+    if (!fe_.empty() && fe_.fe_element(set_.active_elements[k]) >= 0) {  // no soft stiffness in FE bodies
+      data.soft_stiffness[k] = 0.0;
+      continue;
+    }
     for (Index p = q_.begin[k]; p < q_.begin[k + 1]; ++p)
       mu = std::max(mu, materials_[static_cast<std::size_t>(q_.material[static_cast<std::size_t>(p)])].mu);
     data.soft_stiffness[k] = mu * ce[k];
@@ -352,20 +415,44 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
     report.boundary_work = boundary_work(u);
     report.load_work = system_.surface_load_work(u);
     commit(particles, state, u, dt);
+    if (!fe_.empty()) {
+      fe_.commit_nodes(u, options_.newmark, dt, options_.static_analysis, mesh_.nodes, reference_);
+      extension_->apply(fe_.displacement, reference_);  // the background's new x~ (8b)
+      locator_.update(reference_);
+    }
     last_increment_ = std::move(u);
   }
   return report;
 }
 
 template <class E, class Material>
+void ParticleNewmarkStepper<E, Material>::commit_gauss_point(std::size_t qo, const Eigen::VectorXd& u,
+                                                             double dt) {
+  const std::size_t k = static_cast<std::size_t>(
+      std::upper_bound(q_.begin.begin(), q_.begin.end(), static_cast<Index>(qo)) - q_.begin.begin() - 1);
+  const auto nodes = mesh_.element_nodes(set_.active_elements[k]);
+  Mat<D> H = Mat<D>::Identity();  // I + grad~ u~ (25)
+  for (int I = 0; I < E::kNodes; ++I)
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) H(i, j) += u[nodes[static_cast<std::size_t>(I)] * D + i] * q_.G[qo](I, j);
+  const Index g = fem::FeBodies<E>::gauss_point_of(q_.particle[qo]);
+  fe_.commit_gauss_point(g, H, materials_[static_cast<std::size_t>(q_.material[qo])], dt,
+                         options_.small_strain);
+}
+
+template <class E, class Material>
 void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state,
-                                                 const Eigen::VectorXd& u, double dt) const {
+                                                 const Eigen::VectorXd& u, double dt) {
   const NewmarkCoefficients c(options_.newmark, dt);
   const double gamma = options_.newmark.gamma;
   const auto count = static_cast<std::ptrdiff_t>(q_.particle.size());
 #pragma omp parallel for if (count > kParallelMinimum)
   for (std::ptrdiff_t o = 0; o < count; ++o) {
     const auto qo = static_cast<std::size_t>(o);
+    if (q_.particle[qo] < 0) {  // a Gauss point of an FE body
+      commit_gauss_point(qo, u, dt);
+      continue;
+    }
     const auto p = static_cast<std::size_t>(q_.particle[qo]);
     const auto nodes = mesh_.element_nodes(state.element[p]);
     std::array<double, E::kNodes * D> ue;
@@ -394,7 +481,8 @@ void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, Impl
       particles.v[p] += dt * ((1.0 - gamma) * a_old + gamma * a_new);
       state.acceleration[p] = a_new;
     }
-    particles.F[p] = H * particles.F[p];
+    particles.F[p] =
+        options_.small_strain ? Mat<D>(particles.F[p] + H - Mat<D>::Identity()) : Mat<D>(H * particles.F[p]);
     particles.x[p] += up;
     const Material& m = materials_[static_cast<std::size_t>(particles.material[p])];
     if (options_.small_strain) {  // Hooke on sym(F - 1), as the residual (sigma_zz = lambda tr eps)

@@ -6,7 +6,8 @@
 //   grad_x N_I = H^-T grad~ N_I,  H = I + grad~ u~*  (the current nodes x~ + u~*)              (A24)
 // or, with small_strain (a geometrically linear check, e.g. the cantilever against Timoshenko):
 //   r_I += m_p (a_p - b_p) N_I + V0_p sigma_p grad~ N_I,  sigma = lambda tr(eps) 1 + 2 mu eps,
-//   eps = sym(F_p - 1) (exact Hooke for one step from the undeformed state),
+//   eps = sym(F_p - 1), F_p = F_p^n + grad~ u~ (additive: the strains of the steps add up, the
+//   geometrically linear kinematics on the fixed reference mesh),
 // with u~* the receding-corrected displacements (receding_contact.hpp) for a switched particle
 // and u~ itself otherwise; the inertia always uses the uncorrected u~ (extraction §8). Written once
 // on the scalar type S: double for a residual, Dual<N> for the residual and its Jacobian.
@@ -79,14 +80,18 @@ void add_particle_residual(const ParticleQuadrature<E>& q, Index first, Index la
     for (int I = 0; I < n; ++I)
       for (int i = 0; i < D; ++i)
         for (int j = 0; j < D; ++j) add_product(H(i, j), us[I * D + i], G(I, j));
-    const MatS F = H * q.F_old[static_cast<std::size_t>(p)];  // (24)
     const Material& material = materials[q.material[static_cast<std::size_t>(p)]];
     if (options.small_strain) {
+      MatS F = H;  // F^n + grad~ u~
+      for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j)
+          F(i, j) += q.F_old[static_cast<std::size_t>(p)](i, j) - (i == j ? 1.0 : 0.0);
       const MatS eps = 0.5 * (F + F.transpose()) - MatS::Identity();
       const MatS sigma = (material.lambda * eps.trace()) * MatS::Identity() + (2.0 * material.mu) * eps;
       add_inertia_and_stress(q, p, options, u, MatS(q.volume0[static_cast<std::size_t>(p)] * sigma), r);
       continue;
     }
+    const MatS F = H * q.F_old[static_cast<std::size_t>(p)];  // (24)
     const MatS tau = kirchhoff_stress_of<S, D>(material, F, q.state[static_cast<std::size_t>(p)], options.dt);
     MatS H_gradient = H;
     if (switches != 0 && !options.receding_in_gradient) {

@@ -64,17 +64,35 @@ Vec<2> inward_face_normal(const Eigen::Matrix<double, E::kNodes, 2>& x, int f) {
   return Vec<2>(-t[1], t[0]).normalized();
 }
 
+/// The velocity at t^n of the wall behind each face: 0 for a Dirichlet wall at rest, the FE body's
+/// node velocity for the interface with an FE body (A4: the authors' code takes the face's mid-side node).
+template <class E>
+using FaceVelocities = std::array<Vec<2>, E::kFaces>;
+
+/// Walls at rest behind every face (Eigen's vectors are not zeroed by default construction).
+template <class E>
+const FaceVelocities<E>& walls_at_rest() {
+  static const FaceVelocities<E> zero = [] {
+    FaceVelocities<E> v;
+    v.fill(Vec<2>::Zero());
+    return v;
+  }();
+  return zero;
+}
+
 /// The per-particle switch of A4: bit f set where face f has C_c > 0 and the particle's old velocity
 /// relative to the wall has a positive component along the face's inward normal.
 template <class E>
 std::uint32_t receding_switches(const Eigen::Matrix<double, E::kNodes, 2>& x,
                                 const FaceCoefficients<E>& coefficient, const Vec<2>& velocity_old,
-                                const Vec<2>& wall_velocity = Vec<2>::Zero()) {
+                                const FaceVelocities<E>& wall_velocity = walls_at_rest<E>()) {
   std::uint32_t bits = 0;
-  for (int f = 0; f < E::kFaces; ++f)
+  for (int f = 0; f < E::kFaces; ++f) {
+    const Vec<2>& wall = wall_velocity[static_cast<std::size_t>(f)];
     if (coefficient[static_cast<std::size_t>(f)] > 0.0 &&
-        (velocity_old - wall_velocity).dot(inward_face_normal<E>(x, f)) > 0.0)
+        (velocity_old - wall).dot(inward_face_normal<E>(x, f)) > 0.0)
       bits |= 1u << f;
+  }
   return bits;
 }
 

@@ -102,6 +102,9 @@ constexpr std::array<Named<SoftStiffnessRule>, 2> kFlagRules{
     {{"paper", SoftStiffnessRule::Paper}, {"code", SoftStiffnessRule::Code}}};
 constexpr std::array<Named<bool>, 2> kInitialAccelerations{{{"zero", false}, {"body_force", true}}};
 
+/// fe_bodies[].inertia: the physical inertia rho (default) or the authors' code's unit density
+/// (Aulisa & Capodaglio, extraction A2).
+constexpr std::array<Named<bool>, 2> kFeInertia{{{"physical", false}, {"unit_density", true}}};
 constexpr std::array<Named<HeatTransfer>, 2> kHeatTransfers{
     {{"flip", HeatTransfer::FLIP}, {"fmpm", HeatTransfer::FMPM}}};  // heat.transfer
 

@@ -23,8 +23,9 @@
 
 namespace matpoint::input_detail {
 
-void SpecReader::read_bodies(const Value& list) {
-  const auto items = list.elements("a non-empty array of body objects", 1);
+void SpecReader::read_bodies(const Value& list, std::size_t minimum) {
+  const auto items =
+      list.elements(minimum > 0 ? "a non-empty array of body objects" : "an array of body objects", minimum);
   for (std::size_t i = 0; i < items.size(); ++i) spec_.bodies.push_back(read_body(items[i], i));
 }
 

@@ -2,8 +2,11 @@
 // Hex8) or a Gmsh file.
 // The run's `grid` (particle seeding and the inside-the-domain checks of bodies) is the mesh's
 // bounding box with the mean element size of the refined mesh.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
+#include <vector>
 
 #include "matpoint/io/input/keywords.hpp"
 #include "matpoint/io/input/spec_reader.hpp"
@@ -37,19 +40,23 @@ void SpecReader::read_mesh(const Object& m) {
     out.element = *element;
     dim_ = out.element == MeshElement::Hex8 ? 3 : 2;
     read_mesh_diagonal(m);
-    const auto lo = m.required("min").vector(dim_);
-    const auto hi = m.required("max").vector(dim_);
-    const Value cells = m.required("cells");
-    const auto counts = cells.vector(dim_, {1, 1e6, false, false});
-    set_if(out.ratio, m.optional("ratio").vector(dim_, kPositive));
-    if (!lo || !hi || !counts) return;
-    out.min = *lo, out.max = *hi;
-    for (int a = 0; a < dim_; ++a) {
-      out.cells[static_cast<std::size_t>(a)] = static_cast<int>((*counts)[a]);
-      if ((*counts)[a] != std::floor((*counts)[a]))
-        cells.fail("an array of " + std::to_string(dim_) + " whole numbers >= 1");
-      if (!(out.max[a] > out.min[a]))
-        m.required("max").fail(numbers_text(dim_, kAnyNumber) + ", each greater than mesh.min's");
+    if (m.has("lines")) {
+      read_mesh_lines(m);
+    } else {
+      const auto lo = m.required("min").vector(dim_);
+      const auto hi = m.required("max").vector(dim_);
+      const Value cells = m.required("cells");
+      const auto counts = cells.vector(dim_, {1, 1e6, false, false});
+      set_if(out.ratio, m.optional("ratio").vector(dim_, kPositive));
+      if (!lo || !hi || !counts) return;
+      out.min = *lo, out.max = *hi;
+      for (int a = 0; a < dim_; ++a) {
+        out.cells[static_cast<std::size_t>(a)] = static_cast<int>((*counts)[a]);
+        if ((*counts)[a] != std::floor((*counts)[a]))
+          cells.fail("an array of " + std::to_string(dim_) + " whole numbers >= 1");
+        if (!(out.max[a] > out.min[a]))
+          m.required("max").fail(numbers_text(dim_, kAnyNumber) + ", each greater than mesh.min's");
+      }
     }
   }
   set_if(out.refine, m.optional("refine").integer(0, kMaxRefine));
@@ -64,6 +71,44 @@ void SpecReader::read_mesh(const Object& m) {
     g.cell_size[a] = (g.max[a] - g.min[a]) / g.cells[k];
   }
   grid_ok_ = true;
+}
+
+/// mesh.lines: the coarse mesh's lines along each axis, [[x0, x1, ...], [y0, ...]] (each at least two
+/// increasing numbers), instead of min, max, cells and ratio: layers of any sizes (Aulisa &
+/// Capodaglio's Test C: an FE plate of two 0.8 m layers under the graded background grid).
+void SpecReader::read_mesh_lines(const Object& m) {
+  MeshSpec& out = spec_.mesh;
+  for (const char* key : {"min", "max", "cells", "ratio"})
+    if (m.has(key))
+      m.optional(key).fail(std::string("no ") + key + " with mesh.lines (the lines give the mesh)");
+  const Value lines = m.optional("lines");
+  const auto axes =
+      lines.elements("an array of " + std::to_string(dim_) + " arrays of increasing coordinates", 1);
+  if (axes.empty()) return;
+  if (axes.size() != static_cast<std::size_t>(dim_)) {
+    lines.fail("an array of " + std::to_string(dim_) + " arrays (one per axis) of increasing coordinates");
+    return;
+  }
+  for (int a = 0; a < dim_; ++a) {
+    const Value& axis = axes[static_cast<std::size_t>(a)];
+    std::vector<double> values;
+    bool ok = true;
+    for (const Value& x : axis.elements("at least two increasing numbers", 2)) {
+      const auto v = x.number();
+      if (!v)
+        ok = false;
+      else
+        values.push_back(*v);
+    }
+    if (values.size() < 2 || !ok) continue;
+    if (!std::is_sorted(values.begin(), values.end(), std::less_equal<>())) {
+      axis.fail("at least two increasing numbers (strictly)");
+      continue;
+    }
+    out.min[a] = values.front(), out.max[a] = values.back();
+    out.cells[static_cast<std::size_t>(a)] = static_cast<int>(values.size()) - 1;
+    out.lines[static_cast<std::size_t>(a)] = std::move(values);
+  }
 }
 
 /// mesh.diagonal: how a structured T3 mesh splits its cells (mesh/triangle_pattern.hpp); only
@@ -88,7 +133,7 @@ void SpecReader::read_mesh_file(const Object& m) {
   out.element = MeshElement::FromFile;
   const auto file = m.required("file").string();
   const auto dim = m.required("dim").integer(2, 3);
-  for (const char* key : {"element", "min", "max", "cells", "ratio", "diagonal"})
+  for (const char* key : {"element", "min", "max", "cells", "ratio", "lines", "diagonal"})
     if (m.has(key))
       m.optional(key).fail(std::string("no ") + key + " with mesh.file (the file gives the mesh)");
   if (!file || !dim) return;

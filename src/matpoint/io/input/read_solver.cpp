@@ -134,9 +134,10 @@ void SpecReader::read_implicit(const Object& s) {
   set_if(out.end_time, s.required("end_time").number(kPositive));
   set_if(out.max_steps, s.optional("max_steps").integer(0));
   read_energy_guard(s.optional("max_energy_growth"), out);
-  const Object o(s.optional("implicit"), {"beta", "gamma", "initial_acceleration", "newton", "linear_solver",
-                                          "soft_stiffness", "receding_gradient", "max_step_cuts",
-                                          "dt_schedule", "adaptive_dt", "analysis", "kinematics"});
+  const Object o(s.optional("implicit"),
+                 {"beta", "gamma", "initial_acceleration", "newton", "linear_solver", "soft_stiffness",
+                  "receding_gradient", "max_step_cuts", "dt_schedule", "dt_by_position", "adaptive_dt",
+                  "analysis", "kinematics"});
   ImplicitSpec& m = out.implicit;
   if (out.kind == SolverKind::ImplicitUl) m.beta = 0.25;  // Iaconeta 2017 §4.1.1: zeta = 0.25, lambda = 0.5
   if (out.kind == SolverKind::ImplicitUl && spec_.mesh.file.empty() && spec_.mesh.element == MeshElement::Q9)
@@ -177,11 +178,39 @@ void SpecReader::read_implicit(const Object& s) {
   read_soft_stiffness(Object(o.optional("soft_stiffness"), {"flag_rule", "table"}), m);
 }
 
+/// solver.implicit.dt_by_position: {"axis": "y", "dt": {"table": [[coordinate, dt], ...]}}: the step
+/// as a function of the lowest particle's coordinate (Aulisa & Capodaglio's Test D steps finer near the
+/// plate, extraction A18), instead of solver.dt, dt_schedule and adaptive_dt.
+void SpecReader::read_dt_by_position(const Object& s, const Object& o, SolverSpec& out) {
+  for (const char* key : {"dt_schedule", "adaptive_dt"})
+    if (o.has(key)) o.optional(key).fail(std::string("no ") + key + " with dt_by_position (one of them)");
+  if (s.has("dt")) s.optional("dt").fail("no dt with solver.implicit.dt_by_position (one of them)");
+  const Object p(o.optional("dt_by_position"), {"axis", "dt"});
+  if (!p.valid()) return;
+  if (const auto axis = p.required("axis").choice(kAxes)) {
+    if (dim_ != 0 && *axis >= dim_)
+      p.required("axis").fail(dim_ == 2 ? "\"x\" or \"y\"" : "\"x\", \"y\" or \"z\"");
+    out.implicit.dt_position_axis = *axis;
+  }
+  const std::string expected = "a time step > 0 or {\"table\": [[coordinate, dt], ...]} with every dt > 0";
+  out.implicit.dt_by_position = read_time_function(p.required("dt"), expected);
+  if (out.implicit.dt_by_position)
+    for (double dt : out.implicit.dt_by_position->values)
+      if (!(dt > 0)) {
+        p.required("dt").fail(expected);
+        break;
+      }
+}
+
 /// The implicit time step: solver.dt (fixed, or the first adaptive step), or
 /// solver.implicit.dt_schedule (a time function, without solver.dt); adaptive_dt needs solver.dt.
 void SpecReader::read_implicit_time_step(const Object& s, const Object& o, SolverSpec& out) {
   const Value schedule = o.optional("dt_schedule");
   const Value adaptive = o.optional("adaptive_dt");
+  if (o.has("dt_by_position")) {
+    read_dt_by_position(s, o, out);
+    return;
+  }
   if (schedule.present()) {
     if (s.has("dt")) s.optional("dt").fail("no dt with solver.implicit.dt_schedule (one of them)");
     if (adaptive.present()) adaptive.fail("no adaptive_dt with dt_schedule (one of them)");

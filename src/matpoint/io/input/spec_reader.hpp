@@ -26,6 +26,8 @@ class SpecReader {
   void read_mesh(const Object& mesh);
   void read_mesh_file(const Object& mesh);
   void read_mesh_diagonal(const Object& mesh);
+  void read_mesh_lines(const Object& mesh);
+  void read_dt_by_position(const Object& solver, const Object& implicit, SolverSpec& out);
 
   /// A number (the same in every direction) or a vector, all > 0.
   std::optional<Triple> read_cell_size(const Value& v) const;
@@ -73,7 +75,8 @@ class SpecReader {
 
   // --- bodies ---
 
-  void read_bodies(const Value& list);
+  /// At least `minimum` bodies (0 when the run has FE bodies: an FE body alone is a run).
+  void read_bodies(const Value& list, std::size_t minimum);
 
   BodySpec read_body(const Value& v, std::size_t index);
 
@@ -212,6 +215,11 @@ class SpecReader {
   // --- contact (Nairn 2026 §3.2; docs/theory/contact.md) ---
 
   void read_contact(const Value& v);
+
+  // --- fe_bodies (read_fe_bodies.cpp): finite element bodies of an implicit run ---
+
+  void read_fe_bodies(const Value& list);
+  void read_fe_material(const Value& v, FeBodySpec& out) const;
 
   // --- heat (read_heat.cpp): coupled heat conduction, explicit solver only ---
 
