@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 33> kMeasures{{
+inline constexpr std::array<MeasureInfo, 35> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |B(t) - B(0)| / E_s, B = K + U + D - W_ext (kinetic, strain energy, friction "
      "work of contact, external work), E_s = max(K(0) + U(0), max |W_ext| over the run): the energy given or "
@@ -98,6 +98,13 @@ inline constexpr std::array<MeasureInfo, 33> kMeasures{{
      "rigid floor normal to y with gravity (g sin theta, -g cos theta) and Coulomb friction mu; d = x shift "
      "of its centre of mass, d_exact = 1/2 g (sin theta - mu cos theta) t^2 when positive (sliding), else 0 "
      "(sticking); s = d_exact when sliding, 1/2 g sin theta t^2 (the frictionless slide) when sticking"},
+    {"temperature_max",
+     "coupled heat (input section heat): the largest particle temperature over the output times (history.csv "
+     "temperature_max), K: the hottest spot of a run heated by friction or compression (Nairn 2026 Fig. 7)"},
+    {"internal_kinetic_energy_change",
+     "coupled heat: (U + K)(end) / (U + K)(0) - 1, U = history.csv internal_energy (strain energy, "
+     "thermoelastic coupling and heat: docs/theory/heat.md) and K the kinetic energy: conserved by a "
+     "globally adiabatic run, where friction's work becomes heat (Nairn 2026 Fig. 9A)"},
     {"total_mass_change",
      "M(end) / M(0) - 1: the relative change of the bodies' total mass (history.csv mass columns) over the "
      "run"},

@@ -313,6 +313,19 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
   }
   if (name == "final_max_radius_xy") return final_state ? final_state->radius_xy : kNaN;
   if (name == "final_runout_x") return final_state ? final_state->runout_x : kNaN;
+  if (name == "temperature_max") {  // coupled heat: the largest temperature_max of history.csv
+    const auto column = solver_column(history, "temperature_max");
+    if (!column || history.samples.empty()) return kNaN;
+    double largest = -std::numeric_limits<double>::infinity();
+    for (const auto& s : history.samples) largest = std::max(largest, s.solver.at(*column));
+    return largest;
+  }
+  if (name == "internal_kinetic_energy_change") {  // coupled heat: (U + K)(end) / (U + K)(0) - 1
+    const auto column = solver_column(history, "internal_energy");
+    if (!column || history.samples.empty()) return kNaN;
+    const auto energy = [&](const HistorySample& s) { return s.solver.at(*column) + s.kinetic_energy; };
+    return energy(history.samples.back()) / energy(history.samples.front()) - 1.0;
+  }
   if (name == "total_mass_change") {
     if (history.samples.empty()) return kNaN;
     const auto mass = [](const HistorySample& s) {

@@ -102,7 +102,13 @@ class MultiFieldContact {
 
   /// Tasks 1.a / 3.a: the lumped contact law on momenta (`momentum` true) or velocities. Caches
   /// the Net / Evolving state of every contact node for the FMPM loop that may follow.
-  void apply_lumped(const std::vector<double>& mass, std::vector<Vec<D>>& x, bool momentum) {
+  /// `add_to_total`: the step's contact impulse (`total`, for the friction work) adds this
+  /// correction to the earlier ones instead of starting from it. Task 3.a of an FMPM step needs it:
+  /// there the particles take V = S v+(k), v+(k) = m~_k^-1 (p + f dt + ...), which keeps task 1.a's
+  /// correction of p, so that correction reaches the bodies; on a FLIP step it cancels in the
+  /// increment v+ - v of the particle update and only task 3.a's counts.
+  void apply_lumped(const std::vector<double>& mass, std::vector<Vec<D>>& x, bool momentum,
+                    bool add_to_total = false) {
     const auto velocity = [&](Index i) -> Vec<D> { return momentum ? Vec<D>(x[i] / mass[i]) : x[i]; };
     for (auto& e : entries_) {
       const Vec<D> dp0 = change_to_common(e, mass, velocity);
@@ -113,13 +119,14 @@ class MultiFieldContact {
     }
     for (auto& e : entries_) {
       apply(e, e.applied, mass, x, momentum);
-      e.total = e.applied;
+      e.total = add_to_total ? Vec<D>(e.total + e.applied) : e.applied;
     }
   }
 
   /// The friction work of a step: each Coulomb node's total tangential correction (the lumped one
-  /// of task 3.a, plus every increment's correction of an FMPM loop) times the slip left in
-  /// `velocity`: v+(1) right after task 3.a on a FLIP step, the final v+(k) after an FMPM loop.
+  /// of task 3.a; on an FMPM step also task 1.a's and every increment's correction of the loop)
+  /// times the slip left in `velocity`: v+(1) right after task 3.a on a FLIP step, the final v+(k)
+  /// after an FMPM loop.
   [[nodiscard]] double friction_work(const std::vector<double>& mass, const std::vector<Vec<D>>& velocity) const {
     const auto v = [&](Index i) -> Vec<D> { return velocity[i]; };
     double work = 0.0;

@@ -194,7 +194,7 @@ class ExplicitStepper {
   void contact_after_update(double dt, double t_new, Vec<D>& impulse, double& work) {
     auto& f = s_.fields;
     s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
-    s_.contact.apply_lumped(f.mass, f.velocity_new, false);
+    s_.contact.apply_lumped(f.mass, f.velocity_new, false, /*add_to_total=*/fmpm_now_);  // 1.a's reaches V
     if (!fmpm_now_) add_friction_work(f.velocity_new);  // FMPM: after the loop
     s_.conditions.apply(f.velocity_new, t_new, &f.mass, &impulse, &work);
     s_.contact.set_rigid(f.mass, f.velocity_new, t_new, false);
