@@ -349,6 +349,34 @@ TEST(Restart, ImplicitRunContinuesBitForBit) {
   EXPECT_TRUE(same(totals, parts_totals)) << "the Newton totals differ";
 }
 
+// The Galerkin meshfree method (solver.basis "lme", Iaconeta 2017 §4.2): a block on a fixed floor,
+// thrown down and sideways, vibrating. The nodes are Lagrangian and carry Newmark's history, so the
+// checkpoint must keep their positions, velocities and accelerations (solver/meshfree_nodes); the
+// particles carry the rest.
+TEST(Restart, MeshfreeRunContinuesBitForBit) {
+  const Spec spec = parse_spec(R"({"mesh": {"element": "q4", "min": [0, 0], "max": [1, 1], "cells": [4, 4]},
+    "materials": [{"name": "m", "model": "neo_hookean", "density": 1000, "E": 2e5, "nu": 0.3}],
+    "bodies": [{"material": "m", "placement": "gauss", "shape": {"type": "box", "min": [0, 0], "max": [1, 0.5]},
+                "velocity": [0.2, -1]}],
+    "boundary_conditions": [{"type": "fixed", "boundary": "bottom"}],
+    "loads": {"gravity": [0, -9.81]},
+    "solver": {"type": "implicit_ul", "basis": "lme", "dt": 0.01, "end_time": 0.2,
+               "implicit": {"initial_acceleration": "body_force"}},
+    "output": {"every_steps": 3, "plots": false, "checkpoint": {"every_steps": 7},
+               "node_probes": [{"name": "top", "position": [0.5, 0.5]}]}})");
+  expect_restart_equals_uninterrupted("meshfree", spec, [&](const fs::path& dir) {
+    Spec first = spec;
+    first.solver.max_steps = 12;
+    return run_in(first, dir);
+  });
+  const fs::path tmp = fs::temp_directory_path();
+  const Hdf5Reader whole(tmp / "matpoint_checkpoint_meshfree_whole" / kCheckpointFile),
+      parts(tmp / "matpoint_checkpoint_meshfree_parts" / kCheckpointFile);
+  for (const char* name : {"solver/meshfree_nodes", "solver/meshfree_repairs", "solver/history_marks"})
+    EXPECT_TRUE(same(whole.doubles(name, whole.shape(name)), parts.doubles(name, parts.shape(name))))
+        << name << " differs";
+}
+
 // A restart may change `output`: a probe added there has no values before the restart (nan in
 // history.csv) and the followed particle's values after it.
 TEST(Restart, ProbeAddedAtRestartStartsWithTheContinuedRun) {

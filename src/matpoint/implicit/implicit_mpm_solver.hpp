@@ -24,6 +24,7 @@
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/fem/fe_output.hpp"
+#include "matpoint/implicit/implicit_run_common.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_stepper.hpp"
 #include "matpoint/implicit/step_size_control.hpp"
 #include "matpoint/io/checkpoint.hpp"
@@ -32,18 +33,6 @@
 #include "matpoint/run/run_summary.hpp"
 
 namespace matpoint::implicit {
-
-/// The run's totals for summary.json (a checkpoint keeps them).
-struct ImplicitTotals {
-  long steps = 0, newton_iterations = 0, step_cuts = 0, max_iterations_in_a_step = 0;
-  double assembly_seconds = 0.0;
-};
-
-/// What history.csv's solver columns need: the totals at the previous row and the last residual.
-struct HistoryMarks {
-  long newton_iterations = 0, step_cuts = 0;  // ImplicitTotals' at the previous history row
-  double newton_residual = 0.0;               // |R| at the end of the last Newton solve
-};
 
 template <int D>
 ParticleNewmarkOptions<D> stepper_options(const Spec& spec) {
@@ -66,29 +55,6 @@ ParticleNewmarkOptions<D> stepper_options(const Spec& spec) {
                                         LinearSolverKind::BicgstabIlut, LinearSolverKind::GmresIlut};
   o.linear.kind = kinds[static_cast<int>(in.linear_solver)];
   return o;
-}
-
-/// The non-empty entry `name` of a mesh's named sets (node sets, boundary faces); throws InputError
-/// at `path` listing the mesh's names when there is none.
-template <class Sets>
-const typename Sets::mapped_type& named_boundary(const Sets& sets, const std::string& name,
-                                                 const std::string& path,
-                                                 const std::string& what = "a boundary of the mesh") {
-  const auto it = sets.find(name);
-  if (it == sets.end() || it->second.empty()) {
-    std::string names;
-    for (const auto& entry : sets) names += (names.empty() ? "\"" : ", \"") + entry.first + "\"";
-    throw InputError(
-        {{path, "\"" + name + "\"", what + ": one of " + (names.empty() ? std::string("(none)") : names)}});
-  }
-  return it->second;
-}
-
-/// The nodes of a named boundary; throws InputError naming the condition when the mesh has none.
-template <int D>
-const std::vector<Index>& boundary_nodes(const mesh::Mesh<D>& m, const VelocityConditionSpec& c,
-                                         std::size_t k) {
-  return named_boundary(m.node_sets, c.boundary, "boundary_conditions[" + std::to_string(k) + "].boundary");
 }
 
 template <class E>
@@ -207,37 +173,25 @@ class ImplicitMpmSolver {
   /// Advances by h: one Newton solve, or after a failure 2, 4, ... sub-steps (at most
   /// max_step_cuts halvings); throws NumericalFailure when even the smallest sub-step fails.
   void step(double h) {
-    double done = 0.0, sub = h;
-    int cuts = 0, most_iterations = 0;
-    while (done < h * (1 - 1e-12)) {
-      sub = std::min(sub, h - done);
+    StepReport report;
+    const auto attempt = [&](double done, double sub) {
       const Vec<D> gravity = gravity_at(sim_.time + done + sub);  // at the end of the sub-step
       stepper_->set_gravity(gravity);
       stepper_->set_prescribed(prescribed_increments(sim_.time + done, sim_.time + done + sub));
       stepper_->set_face_loads(face_loads_at(sim_.time + done + sub), face_loads_at(sim_.time + done));
-      StepReport report = stepper_->step(sim_.particles, state_, sub);
+      report = stepper_->step(sim_.particles, state_, sub);
       last_newton_ = report.newton;
-      const int iterations = report.iterations;  // every solve of the step (one-sided walls: several)
       totals_.assembly_seconds += report.assembly_seconds;
-      totals_.newton_iterations += iterations;
-      totals_.max_iterations_in_a_step = std::max<long>(totals_.max_iterations_in_a_step, iterations);
       marks_.newton_residual = report.newton.final_residual_norm;
-      if (!report.ok()) {
-        if (report.lost_particles > 0 || cuts >= spec_.solver.implicit.max_step_cuts) fail(report, sub, cuts);
-        ++cuts, ++totals_.step_cuts;
-        sub *= 0.5;
-        continue;
+      if (report.ok()) {
+        account_gravity_work<D>(sim_, previous_x_, sub, gravity);
+        sim_.external_work += report.boundary_work + report.load_work;
       }
-      most_iterations = std::max(most_iterations, iterations);
-      account_work(sub, gravity);
-      sim_.external_work += report.boundary_work + report.load_work;
-      done += sub;
-    }
-    ++sim_.step;
-    ++totals_.steps;
-    sim_.time += h;
-    sim_.last_dt = h;
-    step_size_.after_step(h, cuts, most_iterations);
+      // every solve of the step counts (one-sided walls: several)
+      return SubStepOutcome{report.ok(), report.lost_particles > 0, report.iterations};
+    };
+    advance_with_cuts<D>(h, spec_.solver.implicit.max_step_cuts, sim_, totals_, step_size_, attempt,
+                         [&](double sub, int cuts) { fail(report, sub, cuts); });
   }
   void after_step() {}
 
@@ -245,17 +199,13 @@ class ImplicitMpmSolver {
   /// every step is recorded), the residual norm at the end of the last Newton solve, and the last
   /// step's displacement of each output.node_probes node. Values: called once per row.
   [[nodiscard]] std::vector<std::string> history_columns() const {
-    std::vector<std::string> columns{"newton_iterations", "newton_residual", "step_cuts"};
-    for (const ProbeSpec& probe : spec_.output.node_probes)
-      for (int a = 0; a < D; ++a) columns.push_back("node_" + probe.name + "_u" + "xyz"[a]);
+    std::vector<std::string> columns = solver_history_columns<D>(spec_);
     for (const FeBodySpec& body : spec_.fe_bodies)
       for (const char* what : {"_kinetic_energy", "_strain_energy"}) columns.push_back(body.name + what);
     return columns;
   }
   [[nodiscard]] std::vector<double> history_values() {
-    std::vector<double> row{static_cast<double>(totals_.newton_iterations - marks_.newton_iterations),
-                            marks_.newton_residual,
-                            static_cast<double>(totals_.step_cuts - marks_.step_cuts)};
+    std::vector<double> row = solver_history_values(totals_, marks_);
     const Eigen::VectorXd& u = stepper_->last_increment();
     for (Index node : probe_nodes_)
       for (int a = 0; a < D; ++a) row.push_back(u.size() > 0 ? u[node * D + a] : 0.0);
@@ -263,8 +213,6 @@ class ImplicitMpmSolver {
       const auto [kinetic, strain] = fe_body_energies(static_cast<int>(b));
       row.push_back(kinetic), row.push_back(strain);
     }
-    marks_.newton_iterations = totals_.newton_iterations;
-    marks_.step_cuts = totals_.step_cuts;
     return row;
   }
 
@@ -288,13 +236,7 @@ class ImplicitMpmSolver {
     for (Index e : state_.element) element.push_back(static_cast<double>(e));
     c.solver_state["acceleration"] = std::move(acceleration);
     c.solver_state["element"] = std::move(element);
-    c.solver_state["totals"] = {
-        static_cast<double>(totals_.steps), static_cast<double>(totals_.newton_iterations),
-        static_cast<double>(totals_.step_cuts), static_cast<double>(totals_.max_iterations_in_a_step),
-        totals_.assembly_seconds};
-    c.solver_state["history_marks"] = {static_cast<double>(marks_.newton_iterations),
-                                       static_cast<double>(marks_.step_cuts), marks_.newton_residual};
-    c.solver_state["dt"] = {step_size_.current()};
+    save_run_totals(c, totals_, marks_, step_size_);
     std::vector<double> reactions;  // (dof, force) pairs of the moving conditions
     for (const auto& [dof, force] : stepper_->reactions())
       reactions.insert(reactions.end(), {static_cast<double>(dof), force});
@@ -313,28 +255,17 @@ class ImplicitMpmSolver {
   /// Throws InputError when the checkpoint is not an implicit run's of these particles.
   void restore(const RunCounters& c) {
     const std::size_t n = sim_.particles.size();
-    const auto get = [&](const char* name, std::size_t size) -> const std::vector<double>& {
-      const auto it = c.solver_state.find(name);
-      if (it == c.solver_state.end() || it->second.size() != size)
-        throw InputError({{"--restart", std::string("solver/") + name,
-                           "the implicit solver's state of " + std::to_string(n) +
-                               " particles (the checkpoint is not an implicit run's of this input)"}});
-      return it->second;
-    };
-    const auto& acceleration = get("acceleration", n * D);
-    const auto& element = get("element", n);
-    const auto& totals = get("totals", 5);
-    const auto& marks = get("history_marks", 3);
+    const std::string expected = "the implicit solver's state of " + std::to_string(n) +
+                                 " particles (the checkpoint is not an implicit run's of this input)";
+    const auto& acceleration = checkpoint_array(c, "acceleration", n * D, expected);
+    const auto& element = checkpoint_array(c, "element", n, expected);
+    restore_run_totals(c, totals_, marks_, step_size_, expected);
     state_.resize(n);
     for (std::size_t p = 0; p < n; ++p) {
       for (int a = 0; a < D; ++a)
         state_.acceleration[p][a] = acceleration[p * D + static_cast<std::size_t>(a)];
       state_.element[p] = static_cast<Index>(element[p]);
     }
-    totals_ = {static_cast<long>(totals[0]), static_cast<long>(totals[1]), static_cast<long>(totals[2]),
-               static_cast<long>(totals[3]), totals[4]};
-    marks_ = {static_cast<long>(marks[0]), static_cast<long>(marks[1]), marks[2]};
-    step_size_.restore(get("dt", 1)[0]);
     std::map<Index, double> reactions;
     if (const auto it = c.solver_state.find("boundary_reactions"); it != c.solver_state.end())
       for (std::size_t k = 0; k + 1 < it->second.size(); k += 2)
@@ -344,8 +275,8 @@ class ImplicitMpmSolver {
     if (spec_.fe_bodies.empty()) return;
     auto& fe = stepper_->fe_bodies();
     const std::size_t node_values = fe.displacement.size() * D;
-    const auto& nodes = get("fe_nodes", 3 * node_values);
-    const auto& gauss = get("fe_gauss_F", fe.F.size() * D * D);
+    const auto& nodes = checkpoint_array(c, "fe_nodes", 3 * node_values, expected);
+    const auto& gauss = checkpoint_array(c, "fe_gauss_F", fe.F.size() * D * D, expected);
     std::size_t k = 0;
     for (auto* field : {&fe.displacement, &fe.velocity, &fe.acceleration})
       for (auto& x : *field)
@@ -542,13 +473,7 @@ class ImplicitMpmSolver {
     return {kinetic, strain};
   }
 
-  /// loads.gravity times loads.gravity_scale at time t.
-  [[nodiscard]] Vec<D> gravity_at(double t) const {
-    Vec<D> g;
-    const double scale = spec_.loads.gravity_scale(t);
-    for (int a = 0; a < D; ++a) g[a] = scale * spec_.loads.gravity[a];
-    return g;
-  }
+  [[nodiscard]] Vec<D> gravity_at(double t) const { return implicit::gravity_at<D>(spec_, t); }
 
   /// The (element, face, load index) of every face of the loads.tractions boundaries; throws
   /// InputError naming the load when the mesh has no such boundary.
@@ -587,18 +512,6 @@ class ImplicitMpmSolver {
     for (const auto& [dof, velocity] : moving_dofs_)
       out.emplace_back(dof, velocity->integral(t1) - velocity->integral(t0));
     return out;
-  }
-
-  /// Gravity's work sum m g . dx and impulse M g h over a completed sub-step (the energy balance).
-  void account_work(double h, const Vec<D>& g) {
-    double work = 0.0, mass = 0.0;
-    for (std::size_t p = 0; p < sim_.particles.size(); ++p) {
-      mass += sim_.particles.mass[p];
-      work += sim_.particles.mass[p] * g.dot(sim_.particles.x[p] - previous_x_[p]);
-    }
-    sim_.external_work += work;
-    sim_.external_impulse += mass * h * g;
-    previous_x_ = sim_.particles.x;
   }
 
   [[noreturn]] void fail(const StepReport& report, double sub, int cuts) const {

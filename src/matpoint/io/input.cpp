@@ -197,7 +197,8 @@ Spec SpecReader::read(const json& root_json) {
                                               "artificial_viscosity",
                                               "max_energy_growth",
                                               "type",
-                                              "implicit"}));
+                                              "implicit",
+                                              "meshfree"}));
   check_one_sided_transfer(top.optional("boundary_conditions"));
   read_output(Object(top.optional("output"), {"every_steps", "every_time", "particles", "plots", "fields",
                                               "checkpoint", "probes", "node_probes"}));

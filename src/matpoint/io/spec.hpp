@@ -236,6 +236,17 @@ struct MlsSpec {
 enum class SolverKind { Explicit, ImplicitMpm, ImplicitUl };
 enum class LinearSolverChoice { Umfpack, Klu, BiCgStab, Gmres };
 enum class SoftStiffnessRule { Paper, Code };  // M_E by the paper's rule, or the authors' code's (A13)
+// solver.basis of an implicit run: the mesh's element functions (MPM), or Iaconeta 2017's Galerkin
+// meshfree method (§4.2) with MLS or LME functions on the mesh's nodes (shape/meshfree_stencils.hpp)
+enum class ImplicitBasis { Mesh, Mls, Lme };
+struct MeshfreeSpec {                         // solver.meshfree, multiples of the nodal spacing h
+  double radius_factor = 2.8284271247461903;  // R / h = 2 sqrt(2) (extraction A5)
+  std::optional<double> dilation_factor;      // MLS R_eff / h; empty: R / 2
+  double gamma = 1.8;                         // LME beta h^2 (eq. (61))
+  int min_nodes = 0;                          // MLS repair: variable radius (0: off; §6.5: 6)
+  int lme_max_nodes = 0;                      // LME repair: augment the cloud up to this (0: off)
+  std::optional<double> spacing;              // h; empty: the mesh's smallest cell size
+};
 struct ImplicitSpec {
   double beta = 0.3, gamma = 0.5;  // Newmark, eqs. (17)-(19); the paper's tests use 0.3 / 0.5
   bool initial_acceleration_from_body_force = false;  // a^0 = 0 (the paper) or a^0 = b (A17)
@@ -250,6 +261,8 @@ struct ImplicitSpec {
   SoftStiffnessRule flag_rule = SoftStiffnessRule::Paper;
   std::vector<std::pair<int, double>> soft_stiffness;  // (M_E upper bound, C_E): C_E for M_E < bound
   bool receding_in_gradient = true;                    // A24: grad_x N from the corrected nodes
+  ImplicitBasis basis = ImplicitBasis::Mesh;
+  MeshfreeSpec meshfree;  // basis mls or lme
   // Time-step control: solver.dt (fixed), or a user schedule dt(t) taken at each step's start, or
   // adaptive on Newton's iteration count (implicit/step_size_control.hpp).
   std::optional<TimeFunction> dt_schedule;

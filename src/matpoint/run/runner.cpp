@@ -11,6 +11,7 @@
 #include "matpoint/core/subprocess.hpp"
 #include "matpoint/explicit/explicit_solver.hpp"
 #include "matpoint/implicit/implicit_mpm_solver.hpp"
+#include "matpoint/implicit/meshfree/meshfree_solver.hpp"
 #include "matpoint/mesh/gmsh_import.hpp"
 #include "matpoint/mesh/refine.hpp"
 #include "matpoint/mesh/structured_mesh.hpp"
@@ -136,6 +137,10 @@ mesh::Mesh<D> build_mesh(const MeshSpec& m) {
 template <int D>
 RunResult run_implicit_dim(const Spec& spec, const RunOptions& options) {
   mesh::Mesh<D> background = build_mesh<D>(spec.mesh);
+  if (spec.solver.implicit.basis != ImplicitBasis::Mesh) {  // the Galerkin meshfree method
+    implicit::MeshfreeSolver<D> solver(spec, background);   // may throw InputError
+    return run_loop<D>(spec, options, solver);
+  }
   return mesh::visit_element_type_of_dim<D>(background.shape, [&](auto element) -> RunResult {
     using E = decltype(element);
     implicit::ImplicitMpmSolver<E> solver(spec, std::move(background));  // may throw InputError

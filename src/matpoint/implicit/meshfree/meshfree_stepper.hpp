@@ -13,9 +13,14 @@
 // fixed node's position x_d, by one Lagrange multiplier per fixed dof. LME interpolates on the
 // hull boundary (weak Kronecker delta), so fixing every node of a boundary face is exact there and
 // `multipliers` can be off.
+// After a converged step every point also gets its velocity v_p = sum_I N_I(x_p^n) v_I^{n+1} (for the
+// writers and the energies: the nodes carry the history) and its Cauchy stress from the material's
+// converged update, which advances the plastic state (implicit_material.hpp). The initial nodal
+// velocity and acceleration come from a consistent-mass projection (project_to_nodes).
 #pragma once
 
 #include <Eigen/Core>
+#include <chrono>
 #include <memory>
 #include <span>
 #include <vector>
@@ -37,8 +42,22 @@ struct MeshfreeBody {
   std::vector<Vec<D>> point_x;
   std::vector<double> point_mass, point_volume0;
   std::vector<Mat<D>> point_F;
+  std::vector<int> point_material;  // index into the stepper's materials (empty: all 0)
+  std::vector<double> point_state;  // material history, state_stride values per point
+  int state_stride = 0;
+  // Written by each converged step: v_p = sum_I N_I(x_p^n) v_I, the Cauchy stress (and sigma_zz in 2-D).
+  std::vector<Vec<D>> point_v;
+  std::vector<Mat<D>> point_stress;
+  std::vector<double> point_stress_zz;
 
   [[nodiscard]] Index dofs() const { return static_cast<Index>(node_x.size()) * D; }
+  [[nodiscard]] int material(std::size_t p) const { return point_material.empty() ? 0 : point_material[p]; }
+  [[nodiscard]] const double* state(std::size_t p) const {
+    return state_stride > 0 ? &point_state[p * static_cast<std::size_t>(state_stride)] : nullptr;
+  }
+  [[nodiscard]] double* state(std::size_t p) {
+    return state_stride > 0 ? &point_state[p * static_cast<std::size_t>(state_stride)] : nullptr;
+  }
 };
 
 struct MeshfreeStepOptions {
@@ -47,48 +66,45 @@ struct MeshfreeStepOptions {
   bool quasi_static = false;             // no inertia (the static cantilever)
   bool multipliers = true;               // Dirichlet conditions on the field (see above) or on nodal values
   NewtonOptions newton{};
+  LinearSolverOptions linear{};
 };
 
 template <int D, class Material>
 class MeshfreeStepper {
  public:
   MeshfreeStepper(const Material& material, MeshfreeStepOptions options)
-      : material_(material), options_(std::move(options)), solver_(make_linear_solver()) {
+      : MeshfreeStepper(std::vector<Material>{material}, std::move(options)) {}
+  /// One material per MeshfreeBody::point_material index.
+  MeshfreeStepper(std::vector<Material> materials, MeshfreeStepOptions options)
+      : materials_(std::move(materials)),
+        options_(std::move(options)),
+        solver_(make_linear_solver(options_.linear)) {
     options_.newton.components = D;
   }
 
   /// Advances body by dt under the body force b; returns Newton's result (the body is unchanged
   /// unless it converged). A point without usable shape functions fails the step.
   NewtonResult step(MeshfreeBody<D>& body, double dt, const Vec<D>& b) {
-    build_meshfree_stencils<D>(body.point_x, body.node_x, options_.shape, stencils_);
-    repairs_ += stencils_.repairs;
     NewtonResult result;
-    if (stencils_.repairs.failed > 0) {
-      result.status = NewtonStatus::AssemblyFailed;
-      result.message =
-          "meshfree shape functions failed at " + std::to_string(stencils_.repairs.failed) + " points";
-      return result;
-    }
-    if (!build_constraints(body)) {
-      result.status = NewtonStatus::AssemblyFailed;
-      result.message = "meshfree shape functions failed at a Dirichlet node";
-      return result;
-    }
-    build_blocks(body);
+    if (!prepare(body, result)) return result;
     const auto point_data = step_data(body, dt, b);
     const auto points = static_cast<Index>(stencils_.size());
     AssembleFunction assemble = [&](const Eigen::VectorXd& u, Eigen::VectorXd& R, SparseMatrix* K) {
+      const auto t0 = std::chrono::steady_clock::now();
       assembly_.assemble(
           [&](Index p, std::span<const Index> dofs, double* r, double* k) {
             std::vector<double> local(dofs.size());
             for (std::size_t i = 0; i < dofs.size(); ++i) local[i] = u[dofs[i]];
-            if (p < points)
-              meshfree_point_residual<D>(point_data[static_cast<std::size_t>(p)], material_, local.data(), r,
-                                         k);
-            else
+            if (p < points) {
+              const auto q = static_cast<std::size_t>(p);
+              meshfree_point_residual<D>(
+                  point_data[q], materials_[static_cast<std::size_t>(body.material(q))], local.data(), r, k);
+            } else {
               constraint_residual(p - points, local.data(), r, k);
+            }
           },
           R, K);
+      assembly_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       return R.allFinite();
     };
     Eigen::VectorXd du = Eigen::VectorXd::Zero(body.dofs() + multiplier_dofs());
@@ -98,12 +114,87 @@ class MeshfreeStepper {
     return result;
   }
 
+  /// The nodal field X (node-major) whose consistent-mass projection matches each point's y_p, with
+  /// the internal force of the points' present stress on the right-hand side when `internal_force`:
+  ///   sum_p m_p N_I (sum_J N_J X_J - y_p) + [V0_p tau_p grad_n N_I] = 0,
+  /// the fixed dofs (or with multipliers the field at the fixed nodes) held at 0. With y_p = b this
+  /// is the initial acceleration M a^0 = f_ext - f_int (Newmark's free fall is exact only with it);
+  /// with y_p = v_p, the nodes' initial velocity. A linear solve; false when it failed.
+  bool project_to_nodes(const MeshfreeBody<D>& body, const std::vector<Vec<D>>& y, bool internal_force,
+                        std::vector<Vec<D>>& X) {
+    NewtonResult result;
+    if (!prepare(body, result)) return false;
+    const auto points = static_cast<Index>(stencils_.size());
+    Eigen::VectorXd R;
+    SparseMatrix K = assembly_.pattern();
+    assembly_.assemble(
+        [&](Index p, std::span<const Index> dofs, double* r, double* k) {
+          std::vector<double> zero(dofs.size(), 0.0);
+          if (p < points)
+            mass_residual(body, static_cast<std::size_t>(p), y[static_cast<std::size_t>(p)], internal_force,
+                          r, k);
+          else
+            constraint_residual(p - points, zero.data(), r, k);
+        },
+        R, &K);
+    Eigen::VectorXd x;
+    if (!R.allFinite() || !solver_->factorize(K, assembly_.pattern_version()) || !solver_->solve(-R, x) ||
+        !x.allFinite())
+      return false;
+    X.resize(body.node_x.size());
+    for (std::size_t I = 0; I < X.size(); ++I) X[I] = x.segment<D>(static_cast<Index>(I) * D);
+    return true;
+  }
+
   [[nodiscard]] const MeshfreeRepairCounts& repairs() const { return repairs_; }
+  [[nodiscard]] const LinearSolver& linear_solver() const { return *solver_; }
+  [[nodiscard]] double assembly_seconds() const { return assembly_seconds_; }
   [[nodiscard]] int colours() const { return assembly_.colour_count(); }
   [[nodiscard]] const MeshfreeStencils<D>& stencils() const { return stencils_; }
   [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
 
  private:
+  /// The step's clouds, constraints and assembly blocks at the present positions; false (with the
+  /// reason in result) when a point or a constraint has no usable shape functions.
+  bool prepare(const MeshfreeBody<D>& body, NewtonResult& result) {
+    build_meshfree_stencils<D>(body.point_x, body.node_x, options_.shape, stencils_);
+    repairs_ += stencils_.repairs;
+    result.status = NewtonStatus::AssemblyFailed;
+    if (stencils_.repairs.failed > 0) {
+      result.message =
+          "meshfree shape functions failed at " + std::to_string(stencils_.repairs.failed) + " points";
+      return false;
+    }
+    if (!build_constraints(body)) {
+      result.message = "meshfree shape functions failed at a Dirichlet node";
+      return false;
+    }
+    build_blocks(body);
+    return true;
+  }
+
+  /// Point p's block of the consistent-mass projection (project_to_nodes) at X = 0: r_Ii = m_p N_I
+  /// (-y_i) [+ V0 sum_j tau_ij G_Ij], K_IiJj = m_p N_I N_J delta_ij.
+  void mass_residual(const MeshfreeBody<D>& body, std::size_t p, const Vec<D>& y, bool internal_force,
+                     double* r, double* K) const {
+    const auto first = static_cast<std::size_t>(stencils_.offset[p]);
+    const std::size_t n = static_cast<std::size_t>(stencils_.offset[p + 1]) - first, m = n * D;
+    const double mass = body.point_mass[p];
+    Mat<D> tau = Mat<D>::Zero();
+    if (internal_force)
+      tau = kirchhoff_stress_of<double, D>(materials_[static_cast<std::size_t>(body.material(p))],
+                                           body.point_F[p], body.state(p), 0.0);
+    for (std::size_t I = 0; I < n; ++I) {
+      const double NI = stencils_.N[first + I];
+      const Vec<D> f = -mass * NI * y + body.point_volume0[p] * tau * stencils_.dN[first + I];
+      for (int i = 0; i < D; ++i) {
+        r[I * D + i] = f[i];
+        for (std::size_t J = 0; J < n; ++J)
+          K[(I * D + i) * m + J * D + i] = mass * NI * stencils_.N[first + J];
+      }
+    }
+  }
+
   /// The fixed nodes as constraint points (multipliers on): their positions' shape functions.
   bool build_constraints(const MeshfreeBody<D>& body) {
     constrained_.clear();
@@ -183,6 +274,7 @@ class MeshfreeStepper {
       q.N = std::span<const double>(stencils_.N.data() + first, last - first);
       q.G = std::span<const Vec<D>>(stencils_.dN.data() + first, last - first);
       q.mass = body.point_mass[p], q.volume0 = body.point_volume0[p], q.F_old = body.point_F[p], q.dt = dt;
+      q.state = body.state(p);
       Vec<D> known = Vec<D>::Zero();
       if (!options_.quasi_static) {
         q.inertia_coefficient = c.displacement;
@@ -196,7 +288,11 @@ class MeshfreeStepper {
   }
 
   void advance(MeshfreeBody<D>& body, const Eigen::VectorXd& du, double dt) const {
-    for (std::size_t p = 0; p < stencils_.size(); ++p) {
+    const std::size_t points = stencils_.size();
+    body.point_v.resize(points, Vec<D>::Zero());
+    body.point_stress.resize(points, Mat<D>::Zero());
+    body.point_stress_zz.resize(points, 0.0);
+    for (std::size_t p = 0; p < points; ++p) {
       Mat<D> H = Mat<D>::Identity();
       for (auto k = stencils_.offset[p]; k < stencils_.offset[p + 1]; ++k) {
         const Vec<D> d = du.segment<D>(static_cast<Index>(stencils_.node[k]) * D);
@@ -204,6 +300,9 @@ class MeshfreeStepper {
         H += d * stencils_.dN[k].transpose();
       }
       body.point_F[p] = H * body.point_F[p];
+      body.point_stress[p] =
+          updated_stress_of<D>(materials_[static_cast<std::size_t>(body.material(p))], body.point_F[p],
+                               body.state(p), body.point_stress_zz[p], dt);
     }
     const NewmarkCoefficients c(options_.newmark, dt);
     for (std::size_t I = 0; I < body.node_x.size(); ++I) {
@@ -214,9 +313,14 @@ class MeshfreeStepper {
       body.node_v[I] += dt * ((1.0 - options_.newmark.gamma) * body.node_a[I] + options_.newmark.gamma * a);
       body.node_a[I] = a;
     }
+    for (std::size_t p = 0; p < points; ++p) {  // the points' velocity from the nodes' new one
+      body.point_v[p].setZero();
+      for (auto k = stencils_.offset[p]; k < stencils_.offset[p + 1]; ++k)
+        body.point_v[p] += stencils_.N[k] * body.node_v[static_cast<std::size_t>(stencils_.node[k])];
+    }
   }
 
-  Material material_;
+  std::vector<Material> materials_;
   MeshfreeStepOptions options_;
   std::unique_ptr<LinearSolver> solver_;
   SparseAssembly assembly_;
@@ -225,6 +329,7 @@ class MeshfreeStepper {
   MeshfreeRepairCounts repairs_;
   std::vector<Index> offsets_, block_dofs_;
   Eigen::VectorXd last_increment_;
+  double assembly_seconds_ = 0.0;
 };
 
 }  // namespace matpoint::implicit

@@ -100,6 +100,8 @@ constexpr std::array<Named<LinearSolverChoice>, 4> kLinearSolvers{{{"umfpack", L
                                                                    {"gmres", LinearSolverChoice::Gmres}}};
 constexpr std::array<Named<SoftStiffnessRule>, 2> kFlagRules{
     {{"paper", SoftStiffnessRule::Paper}, {"code", SoftStiffnessRule::Code}}};
+constexpr std::array<Named<ImplicitBasis>, 3> kImplicitBases{
+    {{"mesh", ImplicitBasis::Mesh}, {"mls", ImplicitBasis::Mls}, {"lme", ImplicitBasis::Lme}}};
 constexpr std::array<Named<bool>, 2> kInitialAccelerations{{{"zero", false}, {"body_force", true}}};
 
 /// fe_bodies[].inertia: the physical inertia rho (default) or the authors' code's unit density

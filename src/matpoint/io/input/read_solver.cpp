@@ -1,5 +1,6 @@
 // The input reader, section loads and the solver (docs/input.md).
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cctype>
 #include <climits>
@@ -81,6 +82,9 @@ void SpecReader::read_solver(const Object& s) {
   if (s.has("implicit"))
     s.optional("implicit")
         .fail("no implicit options unless solver.type is \"implicit_mpm\" or \"implicit_ul\"");
+  if (s.has("meshfree"))
+    s.optional("meshfree")
+        .fail("no meshfree unless solver.type is \"implicit_ul\" with basis \"mls\" or \"lme\"");
   set_if(out.scheme, s.optional("scheme").choice(kSchemes));
   const auto transfer = s.optional("transfer").choice(kTransfers);
   set_if(out.transfer, transfer);
@@ -125,9 +129,9 @@ void SpecReader::read_implicit(const Object& s) {
   if (!spec_.mesh.enabled)
     s.optional("type").fail("\"explicit\" unless the input has a mesh (solver.type \"" + type +
                             "\" runs on one)");
-  for (const char* key : {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "basis",
-                          "shape", "mapping", "mls", "deformation_update", "courant", "mass_tolerance",
-                          "constrain_old_velocity", "artificial_viscosity"})
+  for (const char* key :
+       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape", "mapping", "mls",
+        "deformation_update", "courant", "mass_tolerance", "constrain_old_velocity", "artificial_viscosity"})
     if (s.has(key))
       s.optional(key).fail(std::string("no ") + key + " with solver.type \"" + type +
                            "\" (an explicit solver's key)");
@@ -176,6 +180,7 @@ void SpecReader::read_implicit(const Object& s) {
   set_if(m.residual_tolerance, n.optional("residual_tolerance").number({0, 1, false, true}));
   set_if(m.line_search, n.optional("line_search").boolean());
   read_soft_stiffness(Object(o.optional("soft_stiffness"), {"flag_rule", "table"}), m);
+  read_implicit_basis(s);
 }
 
 /// solver.implicit.dt_by_position: {"axis": "y", "dt": {"table": [[coordinate, dt], ...]}}: the step
@@ -434,6 +439,73 @@ void SpecReader::check_implicit_materials(const std::string& type, bool small_st
           "solver.type \"" +
               type + "\"");
   }
+}
+
+}  // namespace matpoint::input_detail
+
+namespace matpoint::input_detail {
+
+/// solver.basis of an implicit run: "mesh" (the elements' functions: MPM), or "mls" / "lme", the
+/// Galerkin meshfree method of Iaconeta 2017 §4.2 (the mesh's nodes become Lagrangian nodes with
+/// Newmark history, the particles its integration points), with solver.meshfree's parameters as
+/// multiples of the nodal spacing h (extraction A5). Its step holds fixed and slip dofs at du = 0 and
+/// knows neither prescribed motion, one-sided walls, surface loads nor small-strain kinematics.
+void SpecReader::read_implicit_basis(const Object& s) {
+  ImplicitSpec& m = spec_.solver.implicit;
+  set_if(m.basis, s.optional("basis").choice(kImplicitBases));
+  const Object f(s.optional("meshfree"),
+                 {"radius_factor", "dilation_factor", "gamma", "min_nodes", "lme_max_nodes", "spacing"});
+  if (m.basis == ImplicitBasis::Mesh) {
+    if (s.has("meshfree"))
+      s.optional("meshfree").fail("no meshfree unless solver.basis is \"mls\" or \"lme\"");
+    return;
+  }
+  const bool mls = m.basis == ImplicitBasis::Mls;
+  const std::string basis = mls ? "\"mls\"" : "\"lme\"";
+  if (spec_.solver.kind != SolverKind::ImplicitUl)
+    s.optional("basis").fail(
+        "\"mesh\" under solver.type \"implicit_mpm\" (the Galerkin meshfree method, Iaconeta 2017 §4.2, "
+        "keeps Newmark's history at its nodes: solver.type \"implicit_ul\")");
+  MeshfreeSpec& out = m.meshfree;
+  set_if(out.radius_factor, f.optional("radius_factor").number(kPositive));
+  set_if(out.spacing, f.optional("spacing").number(kPositive));
+  static constexpr std::array<const char*, 2> kLmeOnly{"gamma", "lme_max_nodes"},
+      kMlsOnly{"dilation_factor", "min_nodes"};
+  for (const char* key : mls ? kLmeOnly : kMlsOnly)
+    if (f.has(key)) f.optional(key).fail(std::string("no ") + key + " with solver.basis " + basis);
+  out.dilation_factor = f.optional("dilation_factor").number(kPositive);
+  set_if(out.gamma, f.optional("gamma").number(kPositive));
+  if (const auto n = f.optional("min_nodes").integer(0, 1000)) out.min_nodes = static_cast<int>(*n);
+  if (const auto n = f.optional("lme_max_nodes").integer(0, 1000)) out.lme_max_nodes = static_cast<int>(*n);
+  check_meshfree_conditions(basis);
+}
+
+/// What the meshfree step does not take (read_implicit_basis).
+void SpecReader::check_meshfree_conditions(const std::string& basis) {
+  const std::string with = " with solver.basis " + basis;
+  for (std::size_t k = 0; k < spec_.conditions.size(); ++k) {
+    const VelocityConditionSpec& c = spec_.conditions[k];
+    const std::string path = "boundary_conditions[" + std::to_string(k) + "]";
+    if (c.kind != ConditionKind::Fixed && c.kind != ConditionKind::Slip)
+      issues_.add(path + ".type", "\"velocity\"",
+                  "\"fixed\" or \"slip\"" + with + " (the meshfree step holds its nodes at du = 0)");
+    if (c.one_sided)
+      issues_.add(path + ".one_sided", "true",
+                  "false" + with +
+                      " (a one-sided wall holds mesh nodes under the body; the meshfree body's nodes are "
+                      "Lagrangian and roll away with it)");
+    if (c.receding > 0)
+      issues_.add(path + ".receding", format_number(c.receding),
+                  "0" + with + " (an MPM element's correction)");
+  }
+  if (!spec_.loads.tractions.empty())
+    issues_.add("loads.tractions", "[...]",
+                "none" + with + " (surface loads act on mesh faces, which the meshfree body does not keep)");
+  if (spec_.solver.implicit.small_strain)
+    issues_.add("solver.implicit.kinematics", "\"small\"", "\"finite\"" + with);
+  if (!spec_.solver.implicit.soft_stiffness.empty())
+    issues_.add("solver.implicit.soft_stiffness", "{...}",
+                "none" + with + " (an MPM element's stiffness for nearly empty cells)");
 }
 
 }  // namespace matpoint::input_detail

@@ -171,6 +171,9 @@ class SpecReader {
   void read_implicit(const Object& s);
   /// The material models an implicit run takes (neo_hookean log_j; the plastic ones unless small strain).
   void check_implicit_materials(const std::string& type, bool small_strain);
+  /// solver.basis and solver.meshfree of an implicit run (the Galerkin meshfree method).
+  void read_implicit_basis(const Object& s);
+  void check_meshfree_conditions(const std::string& basis);
 
   static void read_soft_stiffness(const Object& o, ImplicitSpec& m);
 
