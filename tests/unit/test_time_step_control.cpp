@@ -6,6 +6,7 @@
 
 #include "matpoint/implicit/step_size_control.hpp"
 #include "matpoint/io/input.hpp"
+#include "matpoint/run/run_loop.hpp"
 #include "test_support.hpp"
 
 namespace matpoint {
@@ -48,6 +49,30 @@ TEST(StepSizeControl, AStepShortenedToLandOnAnOutputDoesNotShrinkTheNext) {
   implicit::StepSizeControl control(adaptive_solver());
   control.after_step(0.003, 0, 5);  // the run loop shortened the step; Newton was neither easy nor hard
   EXPECT_DOUBLE_EQ(control.next(0.0), 0.01);
+}
+
+TEST(StepsToLand, ExplicitTakesFullStepsThenWhateverIsLeft) {
+  const auto far = run_loop_detail::steps_to_land(0.25, 0.1, false);
+  EXPECT_EQ(far.h, 0.1);
+  EXPECT_FALSE(far.lands);
+  const auto near = run_loop_detail::steps_to_land(0.0500001, 0.1, false);
+  EXPECT_EQ(near.h, 0.0500001);
+  EXPECT_TRUE(near.lands);
+}
+
+TEST(StepsToLand, ImplicitSpreadsTheRemainderOverEqualSteps) {
+  // 0.21 left with dt = 0.1: three steps of 0.07, the last landing; never 0.1, 0.1, 0.01.
+  double remaining = 0.21;
+  int steps = 0;
+  for (bool lands = false; !lands; ++steps) {
+    const auto next = run_loop_detail::steps_to_land(remaining, 0.1, true);
+    EXPECT_NEAR(next.h, 0.07, 1e-15);
+    lands = next.lands;
+    remaining -= next.h;
+  }
+  EXPECT_EQ(steps, 3);
+  // Within dt (1 + 1e-6) the step lands at once, stretched by at most 1e-6.
+  EXPECT_TRUE(run_loop_detail::steps_to_land(0.1000000001, 0.1, true).lands);
 }
 
 TEST(StepSizeControl, ScheduleIsReadAtTheStepsStart) {

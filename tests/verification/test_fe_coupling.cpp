@@ -8,10 +8,9 @@
 //    sqrt(2 h / g) (extraction AT-10), and not before the disk enters the background elements on the
 //    plate (height 0.092 m here): the particle formulation feels a wall as soon as a particle sits in
 //    an element that touches it (§5), sqrt(2 (h - 0.092) / g).
-//  - With the receding correction (C_c = 0.5) the disk leaves the plate and rises to more than half
-//    its drop (the paper's Fig. 12: no damping of the bounces). AT-11 (C_c = 0 sticks) is not held:
-//    at this size the stiff disk rebounds to 0.77 of its drop without the correction (README of
-//    examples/bouncing-disk).
+//  - With the receding correction (C_c = 0.5) and the plate's inertia of the authors' code (unit
+//    density, as the example) the disk bounces back to 90-105 % of its drop (the paper's Fig. 12:
+//    no damping of the bounces); AT-11: with C_c = 0 it sticks and bounces lower.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,6 +28,9 @@ namespace matpoint {
 namespace {
 
 constexpr double kPlateTop = -1.52, kGravity = 9.81;
+// Aulisa & Capodaglio Fig. 12: the disk bounces back to its drop height (no damping). The band of the
+// bouncing-disk example's checks: 90 % to 105 % of the drop.
+constexpr double kLowestApex = 0.90, kHighestApex = 1.05;
 
 /// The bouncing-disk example with a coarse disk (N_theta0 = 60), dropped from `height` (its lowest
 /// point above the plate), steps of 0.002 s far from the plate and 5e-4 s near it.
@@ -63,7 +65,8 @@ BounceRecord run_bounce(const Spec& spec, double end_time) {
   for (std::size_t p = 0; p < sim.particles.size(); ++p)
     if ((sim.particles.x[p] - sim.particles.x[centre]).norm() > 0 &&
         std::abs(sim.particles.x[p][1] - spec.bodies[0].center[1]) + std::abs(sim.particles.x[p][0]) <
-            std::abs(sim.particles.x[centre][1] - spec.bodies[0].center[1]) + std::abs(sim.particles.x[centre][0]))
+            std::abs(sim.particles.x[centre][1] - spec.bodies[0].center[1]) +
+                std::abs(sim.particles.x[centre][0]))
       centre = p;
   const auto& fe = solver.fe_bodies_state();
   mesh::PointLocator<2> all(solver.mesh(), solver.mesh().nodes);
@@ -75,13 +78,14 @@ BounceRecord run_bounce(const Spec& spec, double end_time) {
     out.centre_y.push_back(sim.particles.x[centre][1]);
     all.update(solver.reference_nodes());
     for (const auto& x : sim.particles.x)
-      if (const auto loc = all.locate(x); loc && fe.element_mask()[static_cast<std::size_t>(loc->element)] != 0 &&
+      if (const auto loc = all.locate(x); loc &&
+                                          fe.element_mask()[static_cast<std::size_t>(loc->element)] != 0 &&
                                           mesh::Q9::contains(loc->xi, -1e-9))
         out.particle_in_fe = true;
     for (Index n = 0; n < solver.mesh().node_count(); ++n)
       if (fe.node_mask()[static_cast<std::size_t>(n)] != 0 &&
-          (solver.reference_nodes()[static_cast<std::size_t>(n)] - solver.mesh().nodes[static_cast<std::size_t>(n)] -
-           fe.displacement[static_cast<std::size_t>(n)])
+          (solver.reference_nodes()[static_cast<std::size_t>(n)] -
+           solver.mesh().nodes[static_cast<std::size_t>(n)] - fe.displacement[static_cast<std::size_t>(n)])
                   .norm() > 1e-14)
         out.interface_follows_plate = false;
     out.size_fixed = out.size_fixed && solver.last_nodal_increment().size() == dofs;
@@ -126,7 +130,21 @@ TEST(FeCoupling, DiskFallsOntoThePlateWithoutEnteringItAndReboundsWithTheRecedin
   EXPECT_TRUE(bounce.size_fixed);
   EXPECT_LE(contact, expected_contact + 0.02);
   EXPECT_GE(contact, std::sqrt(2 * (height - 0.092) / kGravity));
-  EXPECT_GT(rebound, 0.5);
+  EXPECT_GE(rebound, kLowestApex);
+  EXPECT_LE(rebound, kHighestApex);
+}
+
+TEST(FeCoupling, WithoutTheRecedingCorrectionTheDiskSticksAndLosesItsBounce) {
+  // AT-11 on the same drop: with C_c = 0 the plate's interface nodes, shared with the elements the
+  // disk's bottom sits in, hold the receding disk back (the artificial sticky force of §5), and the
+  // energy it takes is missing from the bounce: below the band that C_c = 0.5 reaches.
+  const double height = 0.3;
+  const Spec sticky = small_bounce_spec(height, 0.0, 5.91e7);
+  const double y0 = sticky.bodies[0].center[1];
+  const BounceRecord bounce = run_bounce(sticky, 0.6);
+  const double rebound = rebound_fraction(bounce, first_contact(bounce, y0), y0);
+  std::printf("C_c = 0: rebound %.3f of the drop\n", rebound);
+  EXPECT_LT(rebound, kLowestApex);
 }
 
 }  // namespace

@@ -11,7 +11,7 @@ struct MeasureInfo {
   std::string_view meaning;
 };
 
-inline constexpr std::array<MeasureInfo, 35> kMeasures{{
+inline constexpr std::array<MeasureInfo, 38> kMeasures{{
     {"max_relative_energy_error",
      "max over output times of |B(t) - B(0)| / E_s, B = K + U + D - W_ext (kinetic, strain energy, friction "
      "work of contact, external work), E_s = max(K(0) + U(0), max |W_ext| over the run): the energy given or "
@@ -105,6 +105,17 @@ inline constexpr std::array<MeasureInfo, 35> kMeasures{{
      "coupled heat: (U + K)(end) / (U + K)(0) - 1, U = history.csv internal_energy (strain energy, "
      "thermoelastic coupling and heat: docs/theory/heat.md) and K the kinetic energy: conserved by a "
      "globally adiabatic run, where friction's work becomes heat (Nairn 2026 Fig. 9A)"},
+    {"bounce_first_impact_time",
+     "body 0 dropped under gravity: the time of its centre of mass's largest downward speed before it first "
+     "stops falling, when the contact force starts to exceed gravity (free fall from a clearance c: "
+     "sqrt(2 c / |g|)) (analysis/bounce.hpp)"},
+    {"bounce_apex_fraction",
+     "body 0 dropped under gravity: the first apex of its centre of mass after the first impact, (h_apex - "
+     "h_min) / (h(0) - h_min), h the height against gravity, h_min the lowest of the impact: the share of "
+     "the drop the first bounce regains (Aulisa & Capodaglio Fig. 12) (analysis/bounce.hpp)"},
+    {"bounce_lowest_apex_fraction",
+     "as bounce_apex_fraction, the lowest apex of all the bounces in the run: no decay of the bounces keeps "
+     "it near bounce_apex_fraction"},
     {"total_mass_change",
      "M(end) / M(0) - 1: the relative change of the bodies' total mass (history.csv mass columns) over the "
      "run"},

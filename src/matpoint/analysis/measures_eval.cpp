@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "matpoint/analysis/bounce.hpp"
+
 namespace matpoint {
 
 namespace {
@@ -325,6 +327,12 @@ double evaluate_measure(std::string_view name, const Spec& spec, const History& 
     if (!column || history.samples.empty()) return kNaN;
     const auto energy = [&](const HistorySample& s) { return s.solver.at(*column) + s.kinetic_energy; };
     return energy(history.samples.back()) / energy(history.samples.front()) - 1.0;
+  }
+  if (name == "bounce_first_impact_time") return bounces_of_first_body(spec, history).first_impact_time;
+  if (name == "bounce_apex_fraction" || name == "bounce_lowest_apex_fraction") {
+    const auto apexes = bounces_of_first_body(spec, history).apex_fractions;
+    if (apexes.empty()) return kNaN;
+    return name == "bounce_apex_fraction" ? apexes.front() : *std::min_element(apexes.begin(), apexes.end());
   }
   if (name == "total_mass_change") {
     if (history.samples.empty()) return kNaN;

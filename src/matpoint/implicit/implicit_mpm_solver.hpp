@@ -160,6 +160,9 @@ class ImplicitMpmSolver {
   /// static analysis, which starts from the undeformed mesh).
   [[nodiscard]] const Eigen::VectorXd& last_nodal_increment() const { return stepper_->last_increment(); }
 
+  /// Output times are reached in equal steps, never a tiny one (run/run_loop.hpp steps_to_land).
+  static constexpr bool kEvenStepsToLand = true;
+
   /// The next step: solver.dt, the schedule's, or the adaptive one (cut steps are retried
   /// inside step()).
   [[nodiscard]] double time_step() const {

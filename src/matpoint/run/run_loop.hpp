@@ -18,6 +18,8 @@
 // and optionally
 //   std::string frame_part_prefix() const;     a file written at every particle output ("" none)
 //   void write_frame(const std::filesystem::path& file) const;   writes it (an FE body's mesh)
+//   static constexpr bool kEvenStepsToLand = true;
+//                                  reach an output time in equal steps (see steps_to_land)
 #pragma once
 
 #include <algorithm>
@@ -53,6 +55,25 @@ int current_threads();
 const char* signal_name(int signal);
 /// Every history.csv column of the input's probes (analysis/probes.hpp).
 std::vector<std::string> probe_columns(const Spec& spec);
+
+/// The step that advances `remaining` (> 0) toward the next output time or the end, when the
+/// solver's full step is `dt`, and whether it lands there. A step within dt (1 + 1e-6) lands.
+/// Otherwise the explicit solvers take dt, leaving whatever is left to the last step however
+/// small. `even` spreads the remainder: the n = ceil(remaining / dt) steps left all get
+/// remaining / n, so no step is shorter than about dt / 2. The implicit particle-Newmark solvers
+/// need it: their acceleration (u - u_pred) / (beta h^2) (Aulisa & Capodaglio eq. (19)) turns the
+/// Newton tolerance into an error growing as 1 / h^2, so a landing step h << dt followed by a full
+/// one kicks the particles (measured on the bouncing disk with outputs every_time).
+struct LandingStep {
+  double h;
+  bool lands;
+};
+inline LandingStep steps_to_land(double remaining, double dt, bool even) {
+  if (remaining <= dt * (1 + 1e-6)) return {remaining, true};
+  if (!even) return {dt, false};
+  const double steps = std::ceil(remaining / (dt * (1 + 1e-6)));
+  return {remaining / steps, false};
+}
 
 /// Takes checkpoints when `output.checkpoint` asks for them (every N steps or T wall minutes)
 /// and on demand; remembers the last one.
@@ -215,6 +236,7 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
   int interrupted = 0;
   const double end_time = spec.solver.end_time;
   EnergyGuard energy_guard(spec.solver.max_energy_growth, outputs.history());
+  constexpr bool kEvenSteps = requires { requires Solver::kEvenStepsToLand; };
   while (sim.time < end_time * (1 - 1e-12) &&
          (spec.solver.max_steps == 0 || sim.step < spec.solver.max_steps)) {
     // The solver's step (explicit: Nairn 2026 §1.8, dt = C dx / max_p max(c_p, |V_p|) from the
@@ -223,8 +245,7 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
     dt = solver.time_step();
     const double target =
         spec.output.exact_times ? std::min(end_time, schedule.target_time(sim.time)) : end_time;
-    const bool lands = target - sim.time <= dt * (1 + 1e-6);
-    const double h = lands ? target - sim.time : dt;
+    const auto [h, lands] = steps_to_land(target - sim.time, dt, kEvenSteps);
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
     bool recorded = false;

@@ -92,6 +92,9 @@ class MeshfreeSolver {
   /// The probes' displacement over the last step (see the top of this file).
   [[nodiscard]] const std::vector<Vec<D>>& probe_displacements() const { return probe_u_; }
 
+  /// Output times are reached in equal steps, never a tiny one (run/run_loop.hpp steps_to_land).
+  static constexpr bool kEvenStepsToLand = true;
+
   [[nodiscard]] double time_step() const { return step_size_.next(sim_.time); }
 
   /// Advances by h: one Newton solve, or after a failure 2, 4, ... sub-steps (at most
