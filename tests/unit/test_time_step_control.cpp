@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "matpoint/implicit/step_size_control.hpp"
 #include "matpoint/io/input.hpp"
@@ -60,17 +61,21 @@ TEST(StepsToLand, ExplicitTakesFullStepsThenWhateverIsLeft) {
   EXPECT_TRUE(near.lands);
 }
 
-TEST(StepsToLand, ImplicitSpreadsTheRemainderOverEqualSteps) {
-  // 0.21 left with dt = 0.1: three steps of 0.07, the last landing; never 0.1, 0.1, 0.01.
-  double remaining = 0.21;
-  int steps = 0;
-  for (bool lands = false; !lands; ++steps) {
+TEST(StepsToLand, ImplicitSplitsAShortRemainderIntoTwoEqualSteps) {
+  // 0.31 left with dt = 0.1: 0.1, 0.1, then 0.055 twice; never 0.1, 0.1, 0.1, 0.01.
+  double remaining = 0.31;
+  std::vector<double> steps;
+  for (bool lands = false; !lands;) {
     const auto next = run_loop_detail::steps_to_land(remaining, 0.1, true);
-    EXPECT_NEAR(next.h, 0.07, 1e-15);
+    steps.push_back(next.h);
     lands = next.lands;
     remaining -= next.h;
   }
-  EXPECT_EQ(steps, 3);
+  ASSERT_EQ(steps.size(), 4U);
+  EXPECT_EQ(steps[0], 0.1);
+  EXPECT_EQ(steps[1], 0.1);
+  EXPECT_NEAR(steps[2], 0.055, 1e-15);
+  EXPECT_NEAR(steps[3], 0.055, 1e-15);
   // Within dt (1 + 1e-6) the step lands at once, stretched by at most 1e-6.
   EXPECT_TRUE(run_loop_detail::steps_to_land(0.1000000001, 0.1, true).lands);
 }

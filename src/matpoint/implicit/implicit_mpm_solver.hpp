@@ -30,6 +30,7 @@
 #include "matpoint/io/checkpoint.hpp"
 #include "matpoint/mesh/mesh.hpp"
 #include "matpoint/mesh/mesh_vtu.hpp"
+#include "matpoint/run/other_bodies_energy.hpp"
 #include "matpoint/run/run_summary.hpp"
 
 namespace matpoint::implicit {
@@ -115,6 +116,7 @@ class ImplicitMpmSolver {
     }
     stepper_->initialize(sim_.particles, state_);
     previous_x_ = sim_.particles.x;
+    for (const FeBodySpec& body : spec.fe_bodies) fe_takes_gravity_ = fe_takes_gravity_ || body.gravity;
     // output.node_probes: the node nearest each position (ties: the lowest index), as particle probes
     for (long node : probe_particle_ids<D>(mesh_.nodes, spec.output.node_probes))
       probe_nodes_.push_back(static_cast<Index>(node));
@@ -182,12 +184,14 @@ class ImplicitMpmSolver {
       stepper_->set_gravity(gravity);
       stepper_->set_prescribed(prescribed_increments(sim_.time + done, sim_.time + done + sub));
       stepper_->set_face_loads(face_loads_at(sim_.time + done + sub), face_loads_at(sim_.time + done));
+      if (fe_takes_gravity_) fe_displacement_before_ = stepper_->fe_bodies().displacement;
       report = stepper_->step(sim_.particles, state_, sub);
       last_newton_ = report.newton;
       totals_.assembly_seconds += report.assembly_seconds;
       marks_.newton_residual = report.newton.final_residual_norm;
       if (report.ok()) {
         account_gravity_work<D>(sim_, previous_x_, sub, gravity);
+        if (fe_takes_gravity_) fe_external_work_ += fe_gravity_work(gravity);
         sim_.external_work += report.boundary_work + report.load_work;
       }
       // every solve of the step counts (one-sided walls: several)
@@ -217,6 +221,18 @@ class ImplicitMpmSolver {
       row.push_back(kinetic), row.push_back(strain);
     }
     return row;
+  }
+
+  /// The FE bodies' kinetic and strain energy and the work gravity did on them: the run adds them
+  /// to history.csv's totals and the energy guard's balance (run/run_loop.hpp).
+  [[nodiscard]] OtherBodiesEnergy other_bodies_energy() const {
+    OtherBodiesEnergy e;
+    for (std::size_t b = 0; b < spec_.fe_bodies.size(); ++b) {
+      const auto [kinetic, strain] = fe_body_energies(static_cast<int>(b));
+      e.kinetic += kinetic, e.strain += strain;
+    }
+    e.external_work = fe_external_work_;
+    return e;
   }
 
   /// The element mesh (fixed: the grid is reset every step), shown beside the particles.
@@ -254,6 +270,7 @@ class ImplicitMpmSolver {
         for (int j = 0; j < D; ++j) gauss.push_back(F(i, j));
     c.solver_state["fe_nodes"] = std::move(nodes);
     c.solver_state["fe_gauss_F"] = std::move(gauss);
+    c.solver_state["fe_external_work"] = {fe_external_work_};
   }
   /// Throws InputError when the checkpoint is not an implicit run's of these particles.
   void restore(const RunCounters& c) {
@@ -289,6 +306,7 @@ class ImplicitMpmSolver {
       for (int i = 0; i < D; ++i)
         for (int j = 0; j < D; ++j) F(i, j) = gauss[k++];
     stepper_->restore_reference_nodes();
+    fe_external_work_ = checkpoint_array(c, "fe_external_work", 1, expected)[0];
   }
 
   void add_facts(RunFacts& facts) const {
@@ -476,6 +494,30 @@ class ImplicitMpmSolver {
     return {kinetic, strain};
   }
 
+  /// The work of gravity b on the FE bodies over the step just taken, sum_g rho V0_g b . du_g
+  /// (du_g interpolated from the nodes at Gauss point g; the residual's body force m_g s_g b).
+  [[nodiscard]] double fe_gravity_work(const Vec<D>& b) const {
+    const auto& fe = stepper_->fe_bodies();
+    const auto& rule = fem::fe_gauss_rule<E>();
+    const auto per = static_cast<Index>(rule.points.size());
+    double work = 0.0;
+    for (Index k = 0; k < fe.element_count(); ++k) {
+      const auto nodes = mesh_.element_nodes(fe.mesh_element(k));
+      for (Index i = 0; i < per; ++i) {
+        const auto g = static_cast<std::size_t>(k * per + i);
+        if (fe.body_force_scale[g] == 0.0) continue;
+        const auto N = E::values(rule.points[static_cast<std::size_t>(i)]);
+        Vec<D> du = Vec<D>::Zero();
+        for (int I = 0; I < E::kNodes; ++I) {
+          const auto n = static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)]);
+          du += N[I] * (fe.displacement[n] - fe_displacement_before_[n]);
+        }
+        work += fe.mass[g] * fe.body_force_scale[g] * b.dot(du);
+      }
+    }
+    return work;
+  }
+
   [[nodiscard]] Vec<D> gravity_at(double t) const { return implicit::gravity_at<D>(spec_, t); }
 
   /// The (element, face, load index) of every face of the loads.tractions boundaries; throws
@@ -535,6 +577,11 @@ class ImplicitMpmSolver {
   std::optional<ParticleNewmarkStepper<E, ImplicitMaterial>> stepper_;
   ImplicitParticleState<D> state_;
   std::vector<Vec<D>> previous_x_;
+  // Gravity's work on the FE bodies (FE bodies with "gravity": true only), and their nodal
+  // displacement at the start of the step it is summed over.
+  bool fe_takes_gravity_ = false;
+  double fe_external_work_ = 0.0;
+  std::vector<Vec<D>> fe_displacement_before_;
   ImplicitTotals totals_;
   HistoryMarks marks_;
   std::vector<Index> probe_nodes_;                                  // output.node_probes

@@ -47,13 +47,17 @@ class EnergyGuard {
 
   /// Called after every step; `recorded`: the step was written to the history (its row counts
   /// in the scale). Throws NumericalFailure naming the step, the growth and the fastest particle.
-  template <int D>
-  void after_step(const Simulation<D>& sim, bool recorded) {
-    if (recorded) scale_.external_work = std::max(scale_.external_work, std::abs(sim.external_work));
+  /// `other`: the energies of bodies that are not particles (FE bodies), called only when checked.
+  template <int D, class OtherEnergy>
+  void after_step(const Simulation<D>& sim, bool recorded, const OtherEnergy& other) {
     if (!max_growth_ || (!recorded && sim.step % kInterval != 0)) return;
-    const double scale = std::max(scale_.value(), std::abs(sim.external_work));
-    const double b = balance(kinetic_energy(sim.particles), strain_energy<D>(sim.materials, sim.particles),
-                             sim.friction_work + plastic_work<D>(sim.particles), sim.external_work);
+    const auto [other_kinetic, other_strain, other_work] = other();
+    const double external = sim.external_work + other_work;
+    if (recorded) scale_.external_work = std::max(scale_.external_work, std::abs(external));
+    const double scale = std::max(scale_.value(), std::abs(external));
+    const double b = balance(kinetic_energy(sim.particles) + other_kinetic,
+                             strain_energy<D>(sim.materials, sim.particles) + other_strain,
+                             sim.friction_work + plastic_work<D>(sim.particles), external);
     if (!(scale > 0.0)) return;  // nothing given, nothing received: nothing to compare with
     const double growth = (b - balance0_) / scale;
     if (growth <= *max_growth_ && std::isfinite(b)) return;

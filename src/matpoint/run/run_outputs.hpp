@@ -22,6 +22,7 @@
 #include "matpoint/io/checkpoint.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/io/vtk_writer.hpp"
+#include "matpoint/run/other_bodies_energy.hpp"
 #include "matpoint/shape/domains.hpp"
 
 namespace matpoint {
@@ -157,9 +158,14 @@ class RunOutputs {
 
   /// Appends the present state to the history (with the solver's own columns, `solver_values`)
   /// and, with `output.particles`, writes its .vtu.
-  void record(const Simulation<D>& sim, std::vector<double> solver_values) {
+  void record(const Simulation<D>& sim, std::vector<double> solver_values,
+              const OtherBodiesEnergy& other = {}) {
     history_.samples.push_back(history_sample(sim, body_count_, probe_ids_));
-    history_.samples.back().solver = std::move(solver_values);
+    auto& sample = history_.samples.back();
+    sample.solver = std::move(solver_values);
+    sample.kinetic_energy += other.kinetic;
+    sample.strain_energy += other.strain;
+    sample.external_work += other.external_work;
     if (spec_.output.particles ||
         std::chrono::steady_clock::now() - last_history_write_ > std::chrono::seconds(1))
       write_history();
