@@ -62,7 +62,8 @@ SECTIONS = {"read_material": "materials[]", "read_plasticity": "materials[]", "r
             "read_region": "boundary_conditions[]", "read_normal": "boundary_conditions[]",
             "read_solver": "solver", "read_mapping": "solver", "read_fmpm": "solver.fmpm",
             "read_contact": "contact", "read_contact_law": "contact", "read_checks": "checks[]",
-            "read_heat": "heat", "read_thermal_conditions": "heat.conditions[]"}
+            "read_heat": "heat", "read_thermal_conditions": "heat.conditions[]",
+            "read_thermal_contact": "heat", "read_body_temperatures": "heat.body_temperatures[]"}
 
 
 def keys_reading(source, table):

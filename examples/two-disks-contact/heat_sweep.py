@@ -4,7 +4,8 @@ and FMPM(4) mechanics at mu = 0, 0.3, 0.6 (Fig. 9A), the largest temperature (Fi
 mu = 0.6, FMPM(4)) and the Helmholtz free energy change Delta A = A(t) - A(0) (Fig. 10).
 
 Usage: python3 examples/two-disks-contact/heat_sweep.py [MATPOINT] [--cell 3.3333333333e-4]
-       [--jobs N] [--mus 0,0.3,0.6] [--transfers flip,fmpm4] [--heat-transfer flip|fmpm] [--check]
+       [--jobs N] [--mus 0,0.3,0.6] [--transfers flip,fmpm4] [--heat-transfer flip|fmpm]
+       [--heat-contact perfect|insulated] [--check]
 Prints Markdown tables. The paper's cell is 1/3 mm (the default; about 3 min a run on one thread).
 
 Delta A is split as in docs/theory/heat.md, A = sum_p V0 psi_p with
@@ -28,7 +29,7 @@ TRANSFERS = {"flip": ("FLIP", {"transfer": "flip"}),
              "fmpm4": ("FMPM(4)", {"transfer": "fmpm", "fmpm": {"order": 4}})}
 
 
-def case(base, cell, transfer, mu, heat_transfer, every):
+def case(base, cell, transfer, mu, heat_transfer, heat_contact, every):
     spec = variant(base, solver=transfer, output={"every_time": every, "particles": False, "plots": False})
     spec["grid"]["cell_size"] = cell
     spec["contact"] = dict(base["contact"])
@@ -37,7 +38,7 @@ def case(base, cell, transfer, mu, heat_transfer, every):
     else:
         spec["contact"] = {k: v for k, v in spec["contact"].items() if k != "friction"}
         spec["contact"]["law"] = "frictionless"
-    spec["heat"] = dict(base["heat"], transfer=heat_transfer)
+    spec["heat"] = dict(base["heat"], transfer=heat_transfer, contact=heat_contact)
     spec.pop("checks", None)
     return spec
 
@@ -69,6 +70,8 @@ def main():
     parser.add_argument("--mus", default="0,0.3,0.6")
     parser.add_argument("--transfers", default="flip,fmpm4")
     parser.add_argument("--heat-transfer", default="flip", choices=("flip", "fmpm"))
+    parser.add_argument("--heat-contact", default="perfect", choices=("perfect", "insulated"),
+                        help="heat.contact: heat across the contact surface (docs/theory/heat.md)")
     parser.add_argument("--every", type=float, default=2e-6, help="output interval, s")
     parser.add_argument("--check", action="store_true",
                         help="compare with Nairn 2026 (1/3 mm cells): exit 1 unless U + K is lost by < 2 %% "
@@ -78,12 +81,14 @@ def main():
     base = load_input(HERE, "input-heat.json")
     mus = [float(m) for m in args.mus.split(",")]
     transfers = [t for t in args.transfers.split(",") if t]
-    cases = {(TRANSFERS[t][0], mu): case(base, args.cell, TRANSFERS[t][1], mu, args.heat_transfer, args.every)
+    cases = {(TRANSFERS[t][0], mu): case(base, args.cell, TRANSFERS[t][1], mu, args.heat_transfer, args.heat_contact,
+                                            args.every)
              for mu in mus for t in transfers}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         futures = {key: pool.submit(run, args.matpoint, spec) for key, spec in cases.items()}
         results = {key: f.result() for key, f in futures.items()}
-    print(f"cell = {args.cell * 1e3:.4g} mm, heat transfer = {args.heat_transfer}\n")
+    print(f"cell = {args.cell * 1e3:.4g} mm, heat transfer = {args.heat_transfer}, "
+          f"heat contact = {args.heat_contact}\n")
     print("| mechanics | mu | U + K lost | T_max | heat in / E0 | largest dA | dA at end | "
           "mean dA, last quarter | mean W - W0, last quarter | A - W at end |")
     print("|---|---|---|---|---|---|---|---|---|---|")

@@ -6,11 +6,16 @@
 //    other): T = T0 + (T1 - T0) erfc(x / (2 sqrt(a t))), and the heat that entered through the end
 //    is Q = 2 (T1 - T0) rho C_V sqrt(a t / pi) per unit area;
 //  - transport FMPM(k) (T_p = S T+(k)) on the sine mode converges to the exact decay with k;
+//  - a fixed flux q into the x- face of a 2-D block (semi-infinite in x, insulated in y):
+//    T = T0 + (2 q / kappa) sqrt(a t / pi) exp(-x^2 / (4 a t)) - (q x / kappa) erfc(x / (2 sqrt(a t))),
+//    the same at every y, and the heat q A t in, for every basis;
 //  - a homogeneous adiabatic compression of a thermoelastic rod: dT = -3 alpha K T0 tr(eps) / (rho C_V)
 //    at small strain (alpha the linear expansion coefficient, K the bulk modulus).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -18,6 +23,7 @@
 #include "matpoint/analysis/verification.hpp"
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/io/input.hpp"
+#include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 
@@ -128,6 +134,92 @@ TEST(HeatConduction, TransportFmpmConvergesToTheExactDecayWithK) {
   EXPECT_LT(error[2], error[1]);
   EXPECT_NEAR(error[3], error[2], 1e-3 * error[2]);
   EXPECT_LT(error.back(), 0.005);  // within 0.5 % of the exact decay, as FLIP
+}
+
+struct FluxResult {
+  double heat;     // heat content / (q A t)
+  double counted;  // heat_in / (q A t)
+  double across;   // largest |T_p - mean T at its x| / (T(0) - T0): non-uniformity along the face
+  double profile;  // largest |T_p - T_exact| / (T(0) - T0) beyond the first cell
+};
+
+/// q = 100 W/m^2 into the x- face of the block [0, 1] x [0, 0.25] (rho = C_V = kappa = 1, 32 x 8
+/// cells), `basis` (input name) with the stencils `Stencils`, transport FMPM(4) (the FLIP-like update
+/// keeps particle-scale ripples of 3 % next to the heated face), until t = 0.04 (2 sqrt(a t) = 0.4: the far
+/// end is still at T0, erfc(2.5) = 4e-4).
+template <class Stencils>
+FluxResult fixed_flux(const std::string& basis) {
+  const double q = 100.0, t_end = 0.04, T0 = 300.0, width = 0.25;
+  const std::string text = R"({"grid": {"dim": 2, "min": [0, 0], "max": [1, 0.25], "cell_size": 0.03125},
+    "materials": [{"name": "m", "model": "linear_elastic", "density": 1, "E": 1, "nu": 0.3,
+                   "heat_capacity": 1, "conductivity": 1}],
+    "bodies": [{"name": "b", "material": "m", "shape": {"type": "box", "min": [0, 0], "max": [1, 0.25]}}],
+    "solver": {"scheme": "usl", "end_time": 1, "courant": 0.5, "basis": ")" +
+                           basis + R"("},
+    "heat": {"initial_temperature": 300, "transfer": "fmpm", "fmpm_order": 4,
+             "conditions": [{"face": "x-", "flux": 100}]}})";
+  Simulation<2> sim = build_simulation<2>(parse_spec(text));
+  ExplicitStepper<2, Stencils> stepper(sim);
+  while (sim.time < t_end * (1 - 1e-12)) stepper.step(std::min(stable_time_step(sim), t_end - sim.time));
+  const double surface = 2.0 * q * std::sqrt(t_end / kPi);  // T(0) - T0
+  std::map<long, std::pair<double, int>> by_x;              // mean T of the particles at one x
+  const auto key = [](double x) { return std::lround(x * 1e6); };
+  double content = 0.0;
+  FluxResult r{0, 0, 0, 0};
+  for (std::size_t p = 0; p < sim.particles.size(); ++p) {
+    const double x = sim.particles.x[p][0], T = sim.particles.temperature[p];
+    content += sim.particles.mass[p] * (T - T0);
+    auto& [sum, count] = by_x[key(x)];
+    sum += T;
+    ++count;
+    const double s = x / (2.0 * std::sqrt(t_end));
+    const double exact = T0 + surface * std::exp(-s * s) - q * x * std::erfc(s);
+    if (x > 0.03125) r.profile = std::max(r.profile, std::abs(T - exact) / surface);
+  }
+  for (std::size_t p = 0; p < sim.particles.size(); ++p) {
+    const auto& [sum, count] = by_x[key(sim.particles.x[p][0])];
+    r.across = std::max(r.across, std::abs(sim.particles.temperature[p] - sum / count) / surface);
+  }
+  const double in = q * width * t_end;
+  r.heat = content / in;
+  r.counted = sim.boundary_heat / in;
+  return r;
+}
+
+TEST(HeatConduction, FixedFluxPutsInQATForEveryBasisUniformlyAlongTheFace) {
+  // The flux goes to the face's nodes with A_i = int_face N_i dA of the basis's grid functions
+  // (grid/thermal_conditions.hpp): the heat in is q A t to round-off for every basis. Along the
+  // face the block must heat uniformly (the 1-D solution): exactly so for the hat-based bases, whose
+  // lumped capacities next to the face's edges (2 particles per cell) are the same h/2, h as the
+  // areas. The quadratic B-spline's lumped capacities there are 0.531 h, 0.969 h (particle quadrature)
+  // against the exact integrals 0.542 h, 0.958 h that the areas now use, and the hat areas h/2, h
+  // the flux used before: the non-uniformity must be smaller than with the hat areas.
+  const auto check = [](const char* name, const FluxResult& r) {
+    std::printf(
+        "fixed flux, %s: heat content / qAt - 1 = %.2e, heat_in / qAt - 1 = %.2e, along the face %.2e, "
+        "profile %.2e\n",
+        name, r.heat - 1, r.counted - 1, r.across, r.profile);
+    EXPECT_NEAR(r.heat, 1.0, 1e-9) << name;
+    EXPECT_NEAR(r.counted, 1.0, 1e-9) << name;
+  };
+  for (const auto& [name, r] :
+       {std::pair{"linear", fixed_flux<TensorStencils<2, LinearBasis>>("linear")},
+        std::pair{"ugimp", fixed_flux<TensorStencils<2, UGimpBasis>>("ugimp")},
+        std::pair{"cpdi1", fixed_flux<CpdiStencils<2, HatKernel, CpdiDomain::Parallelogram>>("cpdi1")}}) {
+    check(name, r);
+    EXPECT_LT(r.across, 1e-9) << name;   // uniform along the face to round-off
+    EXPECT_LT(r.profile, 0.01) << name;  // the analytic profile within 1 % beyond the first cell
+  }
+  const FluxResult b2 = fixed_flux<TensorStencils<2, QuadraticBSplineBasis>>("bspline2");
+  const FluxResult b3 = fixed_flux<TensorStencils<2, CubicBSplineBasis>>("bspline3");
+  const FluxResult b2gimp = fixed_flux<TensorStencils<2, B2GimpBasis>>("b2gimp");
+  check("bspline2", b2);
+  check("bspline3", b3);
+  check("b2gimp", b2gimp);
+  // The quadratic B-splines with the hat areas (the input's basis only sets the areas here):
+  const FluxResult hat_areas = fixed_flux<TensorStencils<2, QuadraticBSplineBasis>>("linear");
+  check("bspline2 with the hat areas", hat_areas);
+  EXPECT_LT(b2.across, hat_areas.across);
 }
 
 TEST(HeatConduction, AdiabaticCompressionHeatsByTheThermoelasticValue) {

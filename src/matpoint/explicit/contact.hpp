@@ -86,6 +86,14 @@ class MultiFieldContact {
     }
   }
 
+  /// The contact nodes of this step for coupled heat (thermal_contact.hpp): visit(node, a, b,
+  /// in_contact) per entry, b = -1 for field a against all the others (three or more fields), and
+  /// in_contact the mechanics' detection: always for stick, else where the fields touch.
+  template <class Visit>
+  void for_each_contact(Visit&& visit) const {
+    for (const auto& e : entries_) visit(e.node, e.a, e.b, e.law.law == ContactLaw::Stick || e.touching);
+  }
+
   /// Logistic-regression nodes whose fit failed and kept the average normal (diagnostics).
   [[nodiscard]] std::size_t logistic_fallbacks() const { return logistic_fallbacks_; }
 

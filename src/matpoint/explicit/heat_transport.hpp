@@ -7,6 +7,8 @@
 // Particle update: FLIP-like T_p += sum_i S_pi (T+_i - T_i) with T_i as extrapolated, before the
 // fixed temperatures (as the velocity increment includes the conditions' reaction), or transport FMPM(k),
 // T_p = sum_i S_pi T+(k)_i with T+(k) from the same FMPM loop as the velocities (fmpm.hpp).
+// With contact, each field has its own nodal temperatures, coupled at the contact nodes by
+// thermal_contact.hpp (perfect contact, an interface conductance, or insulated).
 // Thermoelastic coupling (alpha > 0; linear_elastic, neo_hookean): the free energy per reference
 // volume gains -3 K alpha (T - T0) ln J, so the Kirchhoff stress gains -3 K alpha (T - T0) I and the
 // adiabatic heating is rho0 C_V dT/dt = -3 K alpha T d(ln J)/dt; with the step's d ln J = tr(L) dt
@@ -20,6 +22,7 @@
 #include "matpoint/explicit/fmpm.hpp"
 #include "matpoint/explicit/scalar_scatter.hpp"
 #include "matpoint/explicit/simulation.hpp"
+#include "matpoint/explicit/thermal_contact.hpp"
 #include "matpoint/grid/thermal_conditions.hpp"
 
 namespace matpoint {
@@ -30,9 +33,12 @@ class HeatTransport {
   HeatTransport() = default;
   HeatTransport(const Simulation<D>& sim, int fields)
       : active_(sim.heat.enabled),
-        conditions_(sim.heat.conditions, sim.grid, fields),
-        fmpm_(transport_fmpm(sim.heat)) {
+        conditions_(sim.heat.conditions, sim.grid, fields, sim.solver.shape),
+        fmpm_(transport_fmpm(sim.heat)),
+        fields_(fields) {
     if (!active_) return;
+    if (fields > 1 && sim.heat.conduction)
+      contact_ = ThermalContactCoupling<D>(sim.heat.contact, sim.heat.contact_conductance);
     transfer_flip_ = sim.heat.transfer == HeatTransfer::FLIP;
     node_heat_.assign(static_cast<std::size_t>(fields) * sim.grid.node_count, 0.0);
     double heaviest = 0.0;
@@ -90,16 +96,20 @@ class HeatTransport {
     const auto nodes = static_cast<std::ptrdiff_t>(capacity_.size());
     for (std::ptrdiff_t i = 0; i < nodes; ++i)
       temperature_[i] = capacity_[i] > floor_ ? temperature_[i] / capacity_[i] : 0.0;
+    if (fields_ > 1) contact_.prepare(sim.contact, capacity_, floor_);
+    if (contact_.perfect()) contact_.mix(temperature_, capacity_);
     start_ = temperature_;  // the FLIP increment T+ - T includes the conditions' change of T_i
     conditions_.apply(temperature_, t_new, &capacity_, &boundary_heat);
     heat_flow(sim, grid, stencils, ps);
     boundary_heat += dt * conditions_.add_flux(flow_, capacity_, floor_);
+    contact_.exchange(grid, stencils, ps, temperature_, capacity_, floor_, dt, flow_);
     updated_.resize(capacity_.size());
     for (std::ptrdiff_t i = 0; i < nodes; ++i) {
       updated_[i] =
           capacity_[i] > floor_ ? temperature_[i] + (flow_[i] * dt + node_heat_[i]) / capacity_[i] : 0.0;
       node_heat_[i] = 0.0;
     }
+    if (contact_.perfect()) contact_.mix(updated_, capacity_);
     conditions_.apply(updated_, t_new, &capacity_, &boundary_heat);
     update_particles(grid, stencils, ps, t_new, boundary_heat);
   }
@@ -142,6 +152,10 @@ class HeatTransport {
     const bool flip = transfer_flip_;
     if (!flip) {
       fmpm_.set_particle_weights(&weight_);
+      if (contact_.perfect())  // perfect contact: one increment per contact node, as one temperature
+        fmpm_.set_increment_correction([this](std::vector<double>& dT) { contact_.mix(dT, capacity_); });
+      else
+        fmpm_.set_increment_correction(nullptr);
       fmpm_.run(grid, stencils, ps, capacity_, floor_, conditions_, t_new, updated_, ws_, &boundary_heat);
     } else {
       for (std::size_t i = 0; i < updated_.size(); ++i) updated_[i] -= start_[i];
@@ -160,6 +174,8 @@ class HeatTransport {
   bool transfer_flip_ = true;
   ThermalConditions<D> conditions_;
   FmpmLoop<D, double> fmpm_;
+  ThermalContactCoupling<D> contact_;  // insulated unless contact fields conduct
+  int fields_ = 1;
   ScalarScatterWorkspace ws_;
   double floor_ = 0.0;               // nodes at or below this capacity are inactive
   std::vector<double> weight_;       // w_p = M_p C_V,p

@@ -102,6 +102,9 @@ void set_up_heat(const Spec& spec, Simulation<D>& sim) {
   }
   auto& ps = sim.particles;
   ps.temperature.assign(ps.size(), h.initial_temperature);
+  for (const auto& [body, T] : h.body_temperatures)
+    for (std::size_t p = 0; p < ps.size(); ++p)
+      if (ps.body[p] == body) ps.temperature[p] = T;
   if (!h.has_sine) return;
   Vec<D> k;
   for (int a = 0; a < D; ++a) k[a] = h.sine_wave_vector[a];

@@ -387,6 +387,9 @@ struct ContactSpec {
 /// heated by friction and thermoelastic coupling. Off unless the input has a "heat" section.
 enum class HeatTransfer { FLIP, FMPM };  // T_p += S dT_i, or T_p = S T+(k) (transport FMPM(k))
 enum class ThermalConditionKind { Temperature, Flux };
+// Heat across a contact surface (contact runs; docs/theory/heat.md "Contact"): one temperature per
+// contact node, an interface conductance h_c, or none.
+enum class ThermalContact { Perfect, Conductance, Insulated };
 
 struct ThermalConditionSpec {
   int face_axis = 0, face_side = 0;  // as VelocityConditionSpec's faces
@@ -408,6 +411,9 @@ struct HeatSpec {
   Triple sine_wave_vector{};
   double sine_phase = 0;
   std::vector<ThermalConditionSpec> conditions;  // faces not listed: zero flux
+  ThermalContact contact = ThermalContact::Perfect;
+  double contact_conductance = 0;                         // h_c, W/(m^2 K) (ThermalContact::Conductance)
+  std::vector<std::pair<int, double>> body_temperatures;  // (body, initial temperature) in place of T0
 };
 
 struct Spec {

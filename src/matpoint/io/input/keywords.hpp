@@ -109,5 +109,8 @@ constexpr std::array<Named<bool>, 2> kInitialAccelerations{{{"zero", false}, {"b
 constexpr std::array<Named<bool>, 2> kFeInertia{{{"physical", false}, {"unit_density", true}}};
 constexpr std::array<Named<HeatTransfer>, 2> kHeatTransfers{
     {{"flip", HeatTransfer::FLIP}, {"fmpm", HeatTransfer::FMPM}}};  // heat.transfer
+constexpr std::array<Named<ThermalContact>, 3> kThermalContacts{{{"perfect", ThermalContact::Perfect},
+                                                                 {"conductance", ThermalContact::Conductance},
+                                                                 {"insulated", ThermalContact::Insulated}}};
 
 }  // namespace matpoint::input_detail

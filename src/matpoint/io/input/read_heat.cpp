@@ -1,5 +1,6 @@
 // The input reader, section heat: coupled heat conduction in the explicit solver (Nairn 2026
 // §3.2.2, §3.5; docs/theory/heat.md) (docs/input.md).
+#include <algorithm>
 #include <array>
 #include <string>
 #include <utility>
@@ -12,8 +13,9 @@ namespace matpoint::input_detail {
 void SpecReader::read_heat(const Value& v) {
   check_material_heat(v.present());
   if (!v.present()) return;
-  const Object h(v, {"initial_temperature", "conduction", "thermoelastic", "friction", "transfer",
-                     "fmpm_order", "temperature_sine", "conditions"});
+  const Object h(v,
+                 {"initial_temperature", "conduction", "thermoelastic", "friction", "transfer", "fmpm_order",
+                  "temperature_sine", "conditions", "contact", "contact_conductance", "body_temperatures"});
   if (!h.valid()) return;
   HeatSpec& out = spec_.heat;
   out.enabled = true;
@@ -29,6 +31,8 @@ void SpecReader::read_heat(const Value& v) {
     set_if(out.fmpm_order, order.integer(1, 100));
   read_heat_sine(Object(h.optional("temperature_sine"), {"amplitude", "wave_vector", "phase"}));
   read_thermal_conditions(h.optional("conditions"));
+  read_thermal_contact(h);
+  read_body_temperatures(h.optional("body_temperatures"));
   if (spec_.solver.is_implicit())
     v.fail("no \"heat\" section with an implicit solver.type (explicit runs only)");
 }
@@ -71,6 +75,36 @@ void SpecReader::read_thermal_conditions(const Value& list) {
     if (!value) continue;
     out.value = *value;
     spec_.heat.conditions.push_back(out);
+  }
+}
+
+/// "contact": "perfect" (default) | "conductance" (with "contact_conductance": h_c > 0) | "insulated".
+void SpecReader::read_thermal_contact(const Object& h) {
+  HeatSpec& out = spec_.heat;
+  set_if(out.contact, h.optional("contact").choice(kThermalContacts));
+  const Value conductance = h.optional("contact_conductance");
+  if (out.contact == ThermalContact::Conductance)
+    set_if(out.contact_conductance, h.required("contact_conductance").number(kPositive));
+  else if (conductance.present())
+    conductance.fail("no contact_conductance unless contact is \"conductance\"");
+}
+
+/// [{"body": name, "temperature": T}, ...]: initial temperatures in place of initial_temperature.
+void SpecReader::read_body_temperatures(const Value& list) {
+  std::vector<std::string> names;
+  for (const auto& b : spec_.bodies) names.push_back(b.name);
+  for (const auto& item : list.elements("an array of {\"body\": name, \"temperature\": T}")) {
+    const Object b(item, {"body", "temperature"});
+    if (!b.valid()) continue;
+    const Value body = b.required("body");
+    const auto name = body.string();
+    const auto it = name ? std::find(names.begin(), names.end(), *name) : names.end();
+    if (it == names.end()) {
+      body.fail("the name of a body: " + join(names, true));
+      continue;
+    }
+    const auto T = b.required("temperature").number(kPositive);
+    if (T) spec_.heat.body_temperatures.emplace_back(static_cast<int>(it - names.begin()), *T);
   }
 }
 

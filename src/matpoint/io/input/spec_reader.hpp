@@ -229,6 +229,8 @@ class SpecReader {
   void read_heat(const Value& v);
   void read_heat_sine(const Object& s);
   void read_thermal_conditions(const Value& list);
+  void read_thermal_contact(const Object& h);
+  void read_body_temperatures(const Value& list);
   /// Every material's thermal keys against the presence of the "heat" section.
   void check_material_heat(bool heat) const;
 
