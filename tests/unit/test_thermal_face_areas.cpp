@@ -30,7 +30,8 @@ void expect_integrals(ShapeKind shape, double edge, double next) {
   const auto integrals = ThermalConditions<2>::grid_function_integrals(shape, kCells);
   const auto expected = expected_integrals(kCells, edge, next);
   ASSERT_EQ(integrals.size(), expected.size());
-  for (std::size_t j = 0; j < expected.size(); ++j) EXPECT_NEAR(integrals[j], expected[j], 1e-14) << "node " << j;
+  for (std::size_t j = 0; j < expected.size(); ++j)
+    EXPECT_NEAR(integrals[j], expected[j], 1e-14) << "node " << j;
   EXPECT_NEAR(std::accumulate(integrals.begin(), integrals.end(), 0.0), kCells, 1e-13);
 }
 

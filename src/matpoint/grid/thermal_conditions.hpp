@@ -77,23 +77,6 @@ class ThermalConditions {
     return total;
   }
 
- private:
-  struct Entry {
-    Index node;
-    double value;  // temperature, or q A_i
-  };
-
-  /// A_i = prod over the other axes b of h_b int N_j(x_b) dx_b.
-  double face_area(const Grid<D>& grid, const std::array<int, D>& ijk, int axis) const {
-    double area = 1.0;
-    for (int b = 0; b < D; ++b) {
-      if (b == axis) continue;
-      if (ijk[b] < 0 || ijk[b] > grid.cells[b]) return 0.0;  // ghost nodes carry no face
-      area *= grid.h[b] * integrals_[b][ijk[b]];
-    }
-    return area;
-  }
-
   /// int_0^cells N_j(xi) dxi (xi in cells) of each node j of one axis for the grid functions of
   /// `shape`: the hat's for linear, GIMP and CPDI, the quadratic B-spline's for bspline2, b2gimp
   /// and b2cpdi, the cubic's for bspline3.
@@ -125,6 +108,23 @@ class ThermalConditions {
         for (int k = 0; k < Kernel::point_width; ++k) integral[i0 + k] += 0.25 * weight[q] * w[k];
       }
     return integral;
+  }
+
+ private:
+  struct Entry {
+    Index node;
+    double value;  // temperature, or q A_i
+  };
+
+  /// A_i = prod over the other axes b of h_b int N_j(x_b) dx_b.
+  double face_area(const Grid<D>& grid, const std::array<int, D>& ijk, int axis) const {
+    double area = 1.0;
+    for (int b = 0; b < D; ++b) {
+      if (b == axis) continue;
+      if (ijk[b] < 0 || ijk[b] > grid.cells[b]) return 0.0;  // ghost nodes carry no face
+      area *= grid.h[b] * integrals_[b][ijk[b]];
+    }
+    return area;
   }
 
   std::array<std::vector<double>, D> integrals_;  // per axis: int N_j dxi by node j
