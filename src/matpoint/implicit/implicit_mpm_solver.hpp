@@ -162,7 +162,8 @@ class ImplicitMpmSolver {
   /// static analysis, which starts from the undeformed mesh).
   [[nodiscard]] const Eigen::VectorXd& last_nodal_increment() const { return stepper_->last_increment(); }
 
-  /// Output times are reached in equal steps, never a tiny one (run/run_loop.hpp steps_to_land).
+  /// An output time one to two steps away is reached in two equal steps, never a full step and a
+  /// tiny one (run/run_loop.hpp steps_to_land).
   static constexpr bool kEvenStepsToLand = true;
 
   /// The next step: solver.dt, the schedule's, or the adaptive one (cut steps are retried

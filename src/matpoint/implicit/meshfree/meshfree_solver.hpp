@@ -92,7 +92,8 @@ class MeshfreeSolver {
   /// The probes' displacement over the last step (see the top of this file).
   [[nodiscard]] const std::vector<Vec<D>>& probe_displacements() const { return probe_u_; }
 
-  /// Output times are reached in equal steps, never a tiny one (run/run_loop.hpp steps_to_land).
+  /// An output time one to two steps away is reached in two equal steps, never a full step and a
+  /// tiny one (run/run_loop.hpp steps_to_land).
   static constexpr bool kEvenStepsToLand = true;
 
   [[nodiscard]] double time_step() const { return step_size_.next(sim_.time); }
