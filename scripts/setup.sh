@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages matpoint needs (only those missing), then builds Release into build/.
 # Safe to run again: it installs nothing and rebuilds only what changed.
+# With --mpi: also OpenMPI and PETSc (libopenmpi-dev, openmpi-bin, libpetsc-real-dev, pkg-config),
+# and a second build with -DMATPOINT_PETSC=ON into build-mpi/ (docs/user_guide.md "MPI and PETSc").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -12,6 +14,10 @@ packages=(build-essential cmake libeigen3-dev nlohmann-json3-dev libcli11-dev li
           libsuitesparse-dev
           libgtest-dev libgmock-dev libbenchmark-dev
           python3 python3-matplotlib python3-numpy python3-meshio python3-h5py python3-vtk9)
+
+mpi=0
+[[ ${1:-} == --mpi ]] && mpi=1
+((mpi)) && packages+=(libopenmpi-dev openmpi-bin libpetsc-real-dev pkg-config)
 
 bash scripts/install_packages.sh "${packages[@]}"
 
@@ -26,3 +32,12 @@ if ! { cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j"
   exit 1
 fi
 echo "setup: build/matpoint is ready"
+((mpi)) || exit 0
+echo "setup: building Release with MPI and PETSc into build-mpi/"
+if ! { cmake -S . -B build-mpi -DCMAKE_BUILD_TYPE=Release -DMATPOINT_PETSC=ON &&
+       cmake --build build-mpi -j"$(nproc)"; } >"$log" 2>&1; then
+  cat "$log" >&2
+  echo "setup: MPI build failed (output above)" >&2
+  exit 1
+fi
+echo "setup: build-mpi/matpoint is ready (mpirun -n P build-mpi/matpoint run ...)"

@@ -6,11 +6,16 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "cli_suggestions.hpp"
 #include "dispersion_command.hpp"
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/interrupt.hpp"
+#include "matpoint/core/parallel_session.hpp"
 #include "matpoint/core/version.hpp"
 #include "matpoint/explicit/setup_warnings.hpp"
 #include "matpoint/run/runner.hpp"
@@ -171,8 +176,47 @@ void use_passive_wait_policy(char** argv) {
   execv("/proc/self/exe", argv);  // returns only on failure: then run on with the default policy
 }
 
+namespace {
+
+/// The words after `--`: PETSc's options (core/parallel_session.hpp); argc shrinks to the words before.
+std::vector<std::string> split_petsc_options(int& argc, char** argv) {
+  std::vector<std::string> petsc;
+  for (int i = 1; i < argc; ++i)
+    if (std::string_view(argv[i]) == "--") {
+      petsc.assign(argv + i + 1, argv + argc);
+      argc = i;
+      break;
+    }
+  return petsc;
+}
+
+/// Under MPI every rank runs the whole simulation (only the linear solves are shared): rank r > 0
+/// writes into DIR.rank<r>, and the checkpoint it restarts from is the one in its own folder.
+void separate_rank_outputs(RunOptions& options) {
+  const int rank = ParallelSession::rank();
+  if (rank == 0) return;
+  const std::string suffix = ".rank" + std::to_string(rank);
+  if (!options.restart.empty())
+    options.restart = std::filesystem::path(options.restart.parent_path().string() + suffix) /
+                      options.restart.filename();
+  std::filesystem::path folder = options.out_dir.lexically_normal();
+  if (!folder.has_filename()) folder = folder.parent_path();  // "out/" is "out"
+  options.out_dir = std::filesystem::path(folder.string() + suffix);
+  options.progress = false;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   use_passive_wait_policy(argv);
+  const std::vector<std::string> petsc_options = split_petsc_options(argc, argv);
+  std::optional<ParallelSession> session;
+  try {
+    session.emplace(petsc_options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  }
   CLI::App app{"matpoint: material point method simulations"};
   app.set_version_flag("--version", std::string("matpoint ") + kVersion);
   app.require_subcommand(1);
@@ -241,6 +285,7 @@ int main(int argc, char** argv) {
       options.out_dir = options.restart.parent_path();
       if (options.out_dir.empty()) options.out_dir = ".";
     }
+    separate_rank_outputs(options);
     return command_run(input, options, overwrite);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -48,13 +48,8 @@ ParticleNewmarkOptions<D> stepper_options(const Spec& spec) {
   o.newmark_at_grid = spec.solver.kind == SolverKind::ImplicitUl;
   o.static_analysis = in.static_analysis;
   o.small_strain = in.small_strain;
-  o.newton.max_iterations = in.max_iterations;
-  o.newton.increment_tolerance = in.increment_tolerance;
-  o.newton.residual_relative = in.residual_tolerance;
-  o.newton.line_search = in.line_search;
-  constexpr LinearSolverKind kinds[] = {LinearSolverKind::Umfpack, LinearSolverKind::Klu,
-                                        LinearSolverKind::BicgstabIlut, LinearSolverKind::GmresIlut};
-  o.linear.kind = kinds[static_cast<int>(in.linear_solver)];
+  o.newton = newton_options(in);
+  o.linear = linear_solver_options(in);
   return o;
 }
 
@@ -333,6 +328,7 @@ class ImplicitMpmSolver {
     s["solve_seconds"] = ls.solve_seconds;
     s["symbolic_analyses"] = ls.analyses;
     s["factorizations"] = ls.factorizations;
+    s["krylov_iterations"] = ls.krylov_iterations;
     if (!spec_.fe_bodies.empty()) {
       const auto& fe = stepper_->fe_bodies();
       s["fe_elements"] = fe.element_count();

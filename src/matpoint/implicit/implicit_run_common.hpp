@@ -11,12 +11,47 @@
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/simulation.hpp"
+#include "matpoint/implicit/linear_solver.hpp"
+#include "matpoint/implicit/newton.hpp"
 #include "matpoint/implicit/step_size_control.hpp"
 #include "matpoint/io/checkpoint.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/mesh/mesh.hpp"
 
 namespace matpoint::implicit {
+
+/// Newton's options from solver.implicit.newton (every formulation).
+[[nodiscard]] inline NewtonOptions newton_options(const ImplicitSpec& in) {
+  NewtonOptions o;
+  o.max_iterations = in.max_iterations;
+  o.increment_tolerance = in.increment_tolerance;
+  o.residual_relative = in.residual_tolerance;
+  o.line_search = in.line_search;
+  return o;
+}
+
+/// The linear solver chosen by solver.implicit.linear_solver (every formulation).
+[[nodiscard]] inline LinearSolverOptions linear_solver_options(const ImplicitSpec& in) {
+  LinearSolverOptions o;
+  switch (in.linear_solver) {
+    case LinearSolverChoice::Umfpack:
+      o.kind = LinearSolverKind::Umfpack;
+      break;
+    case LinearSolverChoice::Klu:
+      o.kind = LinearSolverKind::Klu;
+      break;
+    case LinearSolverChoice::BiCgStab:
+      o.kind = LinearSolverKind::BicgstabIlut;
+      break;
+    case LinearSolverChoice::Gmres:
+      o.kind = LinearSolverKind::GmresIlut;
+      break;
+    case LinearSolverChoice::Petsc:
+      o.kind = LinearSolverKind::Petsc;
+      break;
+  }
+  return o;
+}
 
 /// The run's totals for summary.json (a checkpoint keeps them).
 struct ImplicitTotals {

@@ -4,7 +4,10 @@
 #include <Eigen/KLUSupport>
 #include <Eigen/UmfPackSupport>
 #include <chrono>
+#include <stdexcept>
 #include <unsupported/Eigen/IterativeSolvers>
+
+#include "matpoint/implicit/petsc_solver.hpp"
 
 namespace matpoint::implicit {
 
@@ -128,6 +131,8 @@ std::string_view linear_solver_name(LinearSolverKind kind) {
       return "bicgstab_ilut";
     case LinearSolverKind::GmresIlut:
       return "gmres_ilut";
+    case LinearSolverKind::Petsc:
+      return "petsc";
   }
   return "unknown";
 }
@@ -145,6 +150,9 @@ std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& opti
     case LinearSolverKind::GmresIlut:
       return std::make_unique<KrylovSolver<Eigen::GMRES<SparseMatrix, Eigen::IncompleteLUT<double>>>>(
           name, options);
+    case LinearSolverKind::Petsc:
+      if (auto petsc = make_petsc_solver(options)) return petsc;
+      throw std::runtime_error("linear solver \"petsc\": this build lacks PETSc (cmake -DMATPOINT_PETSC=ON)");
   }
   return nullptr;
 }

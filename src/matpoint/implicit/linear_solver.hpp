@@ -6,9 +6,9 @@
 //   bicgstab_ilut    Eigen BiCGSTAB with an incomplete LU (IncompleteLUT) preconditioner
 //   gmres_ilut       Eigen GMRES (unsupported/Eigen/IterativeSolvers) with IncompleteLUT; the
 //                    authors' code used PETSc GMRES + ILU with rtol 1e-10 (extraction A16)
+//   petsc            PETSc KSP on the MPI ranks (implicit/petsc_solver.hpp; a build with PETSc)
 // The symbolic analysis (ordering, ILUT pattern) runs only when the pattern changes (a new
-// SparseAssembly::pattern_version()); every Newton iteration refactorises numerically. A PETSc
-// back-end fits the same interface (factorize / solve).
+// SparseAssembly::pattern_version()); every Newton iteration refactorises numerically.
 #pragma once
 
 #include <memory>
@@ -19,7 +19,7 @@
 
 namespace matpoint::implicit {
 
-enum class LinearSolverKind { Umfpack, Klu, BicgstabIlut, GmresIlut };
+enum class LinearSolverKind { Umfpack, Klu, BicgstabIlut, GmresIlut, Petsc };
 
 struct LinearSolverOptions {
   LinearSolverKind kind = LinearSolverKind::Umfpack;
@@ -61,8 +61,9 @@ class LinearSolver {
   bool analyzed_ = false;
 };
 
+/// Throws std::runtime_error for "petsc" in a build without PETSc, or without PETSc running.
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& options = {});
-/// "umfpack", "klu", "bicgstab_ilut", "gmres_ilut".
+/// "umfpack", "klu", "bicgstab_ilut", "gmres_ilut", "petsc".
 std::string_view linear_solver_name(LinearSolverKind kind);
 
 }  // namespace matpoint::implicit

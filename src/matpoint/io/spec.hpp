@@ -234,7 +234,8 @@ struct MlsSpec {
 /// the particles) and Iaconeta 2017's updated-Lagrangian MPM (§4.1, Algorithm 1; Newmark at the
 /// grid nodes from the particles' projected velocity and acceleration).
 enum class SolverKind { Explicit, ImplicitMpm, ImplicitUl };
-enum class LinearSolverChoice { Umfpack, Klu, BiCgStab, Gmres };
+// petsc: PETSc KSP on MPI ranks (a build with -DMATPOINT_PETSC=ON; implicit/petsc_solver.hpp)
+enum class LinearSolverChoice { Umfpack, Klu, BiCgStab, Gmres, Petsc };
 enum class SoftStiffnessRule { Paper, Code };  // M_E by the paper's rule, or the authors' code's (A13)
 // solver.basis of an implicit run: the mesh's element functions (MPM), or Iaconeta 2017's Galerkin
 // meshfree method (§4.2) with MLS or LME functions on the mesh's nodes (shape/meshfree_stencils.hpp)

@@ -49,13 +49,8 @@ MeshfreeStepOptions meshfree_step_options(const Spec& spec) {
   s.lme_max_nodes = static_cast<std::size_t>(in.meshfree.lme_max_nodes);
   o.newmark = {in.beta, in.gamma};
   o.quasi_static = in.static_analysis;
-  o.newton.max_iterations = in.max_iterations;
-  o.newton.increment_tolerance = in.increment_tolerance;
-  o.newton.residual_relative = in.residual_tolerance;
-  o.newton.line_search = in.line_search;
-  constexpr LinearSolverKind kinds[] = {LinearSolverKind::Umfpack, LinearSolverKind::Klu,
-                                        LinearSolverKind::BicgstabIlut, LinearSolverKind::GmresIlut};
-  o.linear.kind = kinds[static_cast<int>(in.linear_solver)];
+  o.newton = newton_options(in);
+  o.linear = linear_solver_options(in);
   return o;
 }
 
@@ -192,6 +187,7 @@ class MeshfreeSolver {
     s["solve_seconds"] = ls.solve_seconds;
     s["symbolic_analyses"] = ls.analyses;
     s["factorizations"] = ls.factorizations;
+    s["krylov_iterations"] = ls.krylov_iterations;
     nlohmann::json m;
     m["basis"] = mls ? "mls" : "lme";
     m["nodes"] = body_.node_x.size();

@@ -94,10 +94,11 @@ constexpr std::array<Named<mesh::TrianglePattern>, 4> kTrianglePatterns{
 constexpr std::array<Named<SolverKind>, 3> kSolverKinds{{{"explicit", SolverKind::Explicit},
                                                          {"implicit_mpm", SolverKind::ImplicitMpm},
                                                          {"implicit_ul", SolverKind::ImplicitUl}}};
-constexpr std::array<Named<LinearSolverChoice>, 4> kLinearSolvers{{{"umfpack", LinearSolverChoice::Umfpack},
+constexpr std::array<Named<LinearSolverChoice>, 5> kLinearSolvers{{{"umfpack", LinearSolverChoice::Umfpack},
                                                                    {"klu", LinearSolverChoice::Klu},
                                                                    {"bicgstab", LinearSolverChoice::BiCgStab},
-                                                                   {"gmres", LinearSolverChoice::Gmres}}};
+                                                                   {"gmres", LinearSolverChoice::Gmres},
+                                                                   {"petsc", LinearSolverChoice::Petsc}}};
 constexpr std::array<Named<SoftStiffnessRule>, 2> kFlagRules{
     {{"paper", SoftStiffnessRule::Paper}, {"code", SoftStiffnessRule::Code}}};
 constexpr std::array<Named<ImplicitBasis>, 3> kImplicitBases{

@@ -16,6 +16,7 @@
 
 #include "matpoint/analysis/measures.hpp"
 #include "matpoint/core/errors.hpp"
+#include "matpoint/core/parallel_session.hpp"
 #include "matpoint/io/input/keywords.hpp"
 #include "matpoint/io/input/spec_reader.hpp"
 #include "matpoint/io/memory_estimate.hpp"
@@ -165,6 +166,11 @@ void SpecReader::read_implicit(const Object& s) {
   set_if(m.initial_acceleration_from_body_force,
          o.optional("initial_acceleration").choice(kInitialAccelerations));
   set_if(m.linear_solver, o.optional("linear_solver").choice(kLinearSolvers));
+  if (m.linear_solver == LinearSolverChoice::Petsc && !ParallelSession::built_with_petsc())
+    o.optional("linear_solver")
+        .fail(
+            "\"umfpack\", \"klu\", \"bicgstab\" or \"gmres\": this build lacks PETSc (build with cmake "
+            "-DMATPOINT_PETSC=ON, or run scripts/setup.sh --mpi)");
   set_if(m.max_step_cuts, o.optional("max_step_cuts").integer(0, 30));
   const auto corrected = o.optional("receding_gradient").string();
   if (corrected && *corrected != "corrected" && *corrected != "uncorrected")
