@@ -96,7 +96,8 @@ TEST_P(PetscMethods, SolveTheNonsymmetricSystemToTheResidualBound) {
   Eigen::VectorXd x_umfpack;
   ASSERT_TRUE(umfpack->factorize(a, 1) && umfpack->solve(b, x_umfpack));
   EXPECT_LT((x - x_umfpack).norm(), bound * x_umfpack.norm());
-  std::printf("[%s on %d ranks] |x - x*| / |x*| = %.2e, |x - x_umfpack| / |x_umfpack| = %.2e, bound %.2e\n",
+  if (ParallelSession::rank() == 0)
+    std::printf("[%s on %d ranks] |x - x*| / |x*| = %.2e, |x - x_umfpack| / |x_umfpack| = %.2e, bound %.2e\n",
               GetParam().name.c_str(), ParallelSession::size(), (x - x_exact).norm() / x_exact.norm(),
               (x - x_umfpack).norm() / x_umfpack.norm(), bound);
 
@@ -135,7 +136,7 @@ TEST(PetscSolver, SingularMatrixIsAFailureNotAnException) {
   const bool solved = solver->factorize(a, 1) && solver->solve(Eigen::Vector4d(1, 2, 3, 4), x);
   EXPECT_FALSE(solved);
   EXPECT_FALSE(solver->message().empty());
-  std::printf("singular: %s\n", solver->message().c_str());
+  if (ParallelSession::rank() == 0) std::printf("singular: %s\n", solver->message().c_str());
 }
 
 }  // namespace
