@@ -169,15 +169,23 @@ class ParticleNewmarkStepper {
   void commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state, const Eigen::VectorXd& u,
               double dt);
   /// The velocity at t^n behind each face of background element e: an FE body's, taken at the
-  /// face's last node (a Q9 face's mid-side node, as the authors' code, A4), or 0.
+  /// face's mid-side node on quadratic faces (Q9, T6: the authors' code, A4) and as the mean of the
+  /// two corners on linear ones (Q4, T3), where every node of the face is an FE node; else 0.
   FaceVelocities<E> interface_velocities(Index e) const {
     FaceVelocities<E> out = walls_at_rest<E>();
     if constexpr (D == 2) {
       const auto nodes = mesh_.element_nodes(e);
+      const auto node = [&](int local) { return static_cast<std::size_t>(nodes[static_cast<std::size_t>(local)]); };
       for (int f = 0; f < E::kFaces; ++f) {
         const auto face = E::faces()[static_cast<std::size_t>(f)];
-        const auto n = static_cast<std::size_t>(nodes[static_cast<std::size_t>(face.back())]);
-        if (fe_.node_mask()[n] != 0) out[static_cast<std::size_t>(f)] = fe_.velocity[n];
+        bool on_fe_body = true;
+        for (int local : face) on_fe_body = on_fe_body && fe_.node_mask()[node(local)] != 0;
+        if (!on_fe_body) continue;
+        static_assert(E::kNodesPerFace == 2 || E::kNodesPerFace == 3, "2-D faces: two corners (+ a mid-side node)");
+        if constexpr (E::kNodesPerFace == 3)
+          out[static_cast<std::size_t>(f)] = fe_.velocity[node(face[2])];
+        else
+          out[static_cast<std::size_t>(f)] = 0.5 * (fe_.velocity[node(face[0])] + fe_.velocity[node(face[1])]);
       }
     }
     return out;
