@@ -14,6 +14,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <span>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -65,12 +66,6 @@ class ImplicitMpmSolver {
         sim_(build_simulation<D>(without_conditions(spec))),
         mesh_(std::move(background)),
         step_size_(spec.solver) {
-    // Iaconeta's projection to the nodes (eqs. (38)-(41)) divides by sum_p N_I m_p: quadratic
-    // elements (Q9, T6) have negative shape values and nodal masses near 0 or below.
-    if (spec.solver.kind == SolverKind::ImplicitUl && (E::kNodes == 9 || E::kNodes == 6))
-      throw InputError({{"mesh.file", spec.mesh.file,
-                         "a mesh of linear elements (T3, Q4, Hex8) under solver.type \"implicit_ul\" (the "
-                         "projection of eqs. (38)-(41) needs shape functions >= 0)"}});
     std::vector<char> dirichlet(static_cast<std::size_t>(mesh_.node_count() * D), 0);
     std::vector<char> on_condition(static_cast<std::size_t>(mesh_.node_count()), 0);
     std::map<std::pair<Index, int>, double> receding;
@@ -455,39 +450,51 @@ class ImplicitMpmSolver {
     return s.str();
   }
 
+  /// Calls visit(g, N, nodes) for every Gauss point g of the FE elements of body b (every body with
+  /// b < 0): N the shape values at g, nodes its element's node ids.
+  template <class Visit>
+  void for_each_fe_gauss_point(int b, Visit&& visit) const {
+    const auto& fe = stepper_->fe_bodies();
+    const auto& rule = fem::fe_gauss_rule<E>();
+    const auto per = static_cast<Index>(rule.points.size());
+    for (Index k = 0; k < fe.element_count(); ++k) {
+      if (b >= 0 && fe.body_of(k) != b) continue;
+      const auto nodes = mesh_.element_nodes(fe.mesh_element(k));
+      for (Index i = 0; i < per; ++i)
+        visit(static_cast<std::size_t>(k * per + i), E::values(rule.points[static_cast<std::size_t>(i)]), nodes);
+    }
+  }
+  /// sum_I N_I f_I over an element's nodes (f: a nodal field, or a difference of two).
+  template <class Field>
+  static Vec<D> interpolate(const Eigen::Matrix<double, E::kNodes, 1>& N, std::span<const Index> nodes,
+                            Field&& f) {
+    Vec<D> value = Vec<D>::Zero();
+    for (int I = 0; I < E::kNodes; ++I) value += N[I] * f(static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)]));
+    return value;
+  }
+
   /// Kinetic energy 1/2 sum_g m_g |sum_I N_I v_I|^2 (the consistent mass) and strain energy
   /// sum_g V0_g W(F_g) of FE body b (1/2 sigma : eps with kinematics "small": plane strain's
   /// sigma_zz does no work, eps_zz = 0).
   [[nodiscard]] std::pair<double, double> fe_body_energies(int b) const {
     const auto& fe = stepper_->fe_bodies();
-    const auto& rule = fem::fe_gauss_rule<E>();
-    const auto per = static_cast<Index>(rule.points.size());
     double kinetic = 0.0, strain = 0.0;
-    for (Index k = 0; k < fe.element_count(); ++k) {
-      if (fe.body_of(k) != b) continue;
-      const auto nodes = mesh_.element_nodes(fe.mesh_element(k));
-      for (Index i = 0; i < per; ++i) {
-        const auto g = static_cast<std::size_t>(k * per + i);
-        const auto N = E::values(rule.points[static_cast<std::size_t>(i)]);
-        Vec<D> v = Vec<D>::Zero();
-        for (int I = 0; I < E::kNodes; ++I)
-          v += N[I] * fe.velocity[static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)])];
-        kinetic += 0.5 * fe.mass[g] * v.squaredNorm();
-        if (spec_.solver.implicit.small_strain) {  // Hooke's energy 1/2 sigma : eps, as the residual
-          const Mat<D> eps = 0.5 * (fe.F[g] + fe.F[g].transpose()) - Mat<D>::Identity();
-          strain += fe.volume0[g] * 0.5 * fe.stress[g].cwiseProduct(eps).sum();
-          continue;
-        }
-        strain += fe.volume0[g] * std::visit(
-                                      [&](const auto& model) {
-                                        if constexpr (requires { std::decay_t<decltype(model)>::state_size; })
-                                          return 0.0;  // plastic models are refused for FE bodies
-                                        else
-                                          return model.template energy_density<D>(fe.F[g]);
-                                      },
-                                      sim_.materials[static_cast<std::size_t>(fe.material[g])]);
+    for_each_fe_gauss_point(b, [&](std::size_t g, const auto& N, std::span<const Index> nodes) {
+      kinetic += 0.5 * fe.mass[g] * interpolate(N, nodes, [&](std::size_t n) { return fe.velocity[n]; }).squaredNorm();
+      if (spec_.solver.implicit.small_strain) {  // Hooke's energy 1/2 sigma : eps, as the residual
+        const Mat<D> eps = 0.5 * (fe.F[g] + fe.F[g].transpose()) - Mat<D>::Identity();
+        strain += fe.volume0[g] * 0.5 * fe.stress[g].cwiseProduct(eps).sum();
+        return;
       }
-    }
+      strain += fe.volume0[g] * std::visit(
+                                    [&](const auto& model) {
+                                      if constexpr (requires { std::decay_t<decltype(model)>::state_size; })
+                                        return 0.0;  // plastic models are refused for FE bodies
+                                      else
+                                        return model.template energy_density<D>(fe.F[g]);
+                                    },
+                                    sim_.materials[static_cast<std::size_t>(fe.material[g])]);
+    });
     return {kinetic, strain};
   }
 
@@ -495,23 +502,13 @@ class ImplicitMpmSolver {
   /// (du_g interpolated from the nodes at Gauss point g; the residual's body force m_g s_g b).
   [[nodiscard]] double fe_gravity_work(const Vec<D>& b) const {
     const auto& fe = stepper_->fe_bodies();
-    const auto& rule = fem::fe_gauss_rule<E>();
-    const auto per = static_cast<Index>(rule.points.size());
     double work = 0.0;
-    for (Index k = 0; k < fe.element_count(); ++k) {
-      const auto nodes = mesh_.element_nodes(fe.mesh_element(k));
-      for (Index i = 0; i < per; ++i) {
-        const auto g = static_cast<std::size_t>(k * per + i);
-        if (fe.body_force_scale[g] == 0.0) continue;
-        const auto N = E::values(rule.points[static_cast<std::size_t>(i)]);
-        Vec<D> du = Vec<D>::Zero();
-        for (int I = 0; I < E::kNodes; ++I) {
-          const auto n = static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)]);
-          du += N[I] * (fe.displacement[n] - fe_displacement_before_[n]);
-        }
-        work += fe.mass[g] * fe.body_force_scale[g] * b.dot(du);
-      }
-    }
+    for_each_fe_gauss_point(-1, [&](std::size_t g, const auto& N, std::span<const Index> nodes) {
+      if (fe.body_force_scale[g] == 0.0) return;
+      const Vec<D> du =
+          interpolate(N, nodes, [&](std::size_t n) -> Vec<D> { return fe.displacement[n] - fe_displacement_before_[n]; });
+      work += fe.mass[g] * fe.body_force_scale[g] * b.dot(du);
+    });
     return work;
   }
 

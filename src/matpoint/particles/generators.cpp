@@ -148,19 +148,31 @@ bool shape_contains(const BodySpec& body, const Vec<D>& x) {
 namespace {
 
 /// Particles at the centres of ppc^D equal sub-cells of every grid cell in [first, last] (or at the
-/// cell's 2 x 2 (x 2) Gauss points: bodies[].placement "gauss"), those inside the body's shape.
+/// cell's ppc^D Gauss-Legendre points, ppc = 2 or 3, each with its weight's share of the cell's
+/// volume: bodies[].placement "gauss"), those inside the body's shape.
 template <int D>
 void add_lattice_points(const BodySpec& body, int body_index, const MaterialSpec& material,
                         const Grid<D>& grid, const std::array<int, D>& first, const std::array<int, D>& last,
                         ParticleSet<D>& particles) {
   const int ppc = body.particles_per_cell;
   const Vec<D> sub = grid.h / ppc;
-  const double volume = sub.prod();
-  // The offset of sub-cell s in its cell: the sub-cell centre (s + 1/2) h / ppc, or the 2-point
-  // Gauss-Legendre abscissa (1 -+ 1/sqrt(3)) h / 2 (bodies[].placement "gauss").
+  // Gauss-Legendre on [0, 1]: 2 points (1 -+ 1/sqrt(3)) / 2 with weights 1/2; 3 points
+  // (1 - sqrt(3/5)) / 2, 1/2, (1 + sqrt(3/5)) / 2 with weights 5/18, 8/18, 5/18.
+  const double g2 = 0.5 / std::sqrt(3.0), g3 = 0.5 * std::sqrt(0.6);
+  const std::array<double, 3> gauss_abscissa =
+      ppc == 3 ? std::array<double, 3>{0.5 - g3, 0.5, 0.5 + g3} : std::array<double, 3>{0.5 - g2, 0.5 + g2, 0.0};
+  const std::array<double, 3> gauss_weight =
+      ppc == 3 ? std::array<double, 3>{5.0 / 18, 8.0 / 18, 5.0 / 18} : std::array<double, 3>{0.5, 0.5, 0.0};
+  // The offset of sub-cell s in its cell: the sub-cell centre (s + 1/2) h / ppc, or the Gauss point.
   const auto offset = [&](int s, int a) {
-    if (body.gauss_points) return (0.5 + (s == 0 ? -0.5 : 0.5) / std::sqrt(3.0)) * grid.h[a];
+    if (body.gauss_points) return gauss_abscissa[static_cast<std::size_t>(s)] * grid.h[a];
     return (s + 0.5) * sub[a];
+  };
+  const auto particle_volume = [&](const std::array<int, D>& s) {
+    if (!body.gauss_points) return sub.prod();
+    double v = grid.h.prod();
+    for (int a = 0; a < D; ++a) v *= gauss_weight[static_cast<std::size_t>(s[a])];
+    return v;
   };
 
   // Walk cells, then sub-cells, in row-major order (x fastest), so particles come out cell-sorted.
@@ -170,9 +182,11 @@ void add_lattice_points(const BodySpec& body, int body_index, const MaterialSpec
     while (true) {
       Vec<D> x;
       for (int a = 0; a < D; ++a) x[a] = grid.origin[a] + cell[a] * grid.h[a] + offset(s[a], a);
-      if (shape_contains<D>(body, x))
+      if (shape_contains<D>(body, x)) {
+        const double volume = particle_volume(s);
         particles.add(x, initial_velocity<D>(body, x), material.density * volume, volume, sub, body.material,
                       body_index);
+      }
       int a = 0;
       while (a < D && ++s[a] == ppc) s[a++] = 0;
       if (a == D) break;

@@ -5,7 +5,7 @@
 //     (beta dt) - (1 - 2 beta) / (2 beta) a_p^n at each particle (eq. (21)); after the step the
 //     particle's own a_p, v_p follow eqs. (19), (17);
 //   - Iaconeta 2017's updated-Lagrangian MPM (§4.1, Algorithm 1): the particles' momentum and
-//     m a are projected to the nodes (eqs. (38)-(41)), Newmark's predictor acts on the nodal
+//     m a are projected to the nodes (eqs. (38)-(41); nodal_projection.hpp), Newmark's predictor acts on the nodal
 //     v~_I, a~_I (eqs. (43), (44)), so the particle sees a_p = sum_I N_I a_I; after the step
 //     a_p^{n+1} = sum_I N_I a_I^{n+1} (47) and v_p^{n+1} = v_p^n + dt ((1 - gamma) a_p^n +
 //     gamma a_p^{n+1}) (48, the trapezoidal rule for gamma = 1/2);
@@ -38,6 +38,7 @@
 #include "matpoint/implicit/linear_solver.hpp"
 #include "matpoint/implicit/newton.hpp"
 #include "matpoint/implicit/one_sided_boundary.hpp"
+#include "matpoint/implicit/particle_newmark/nodal_projection.hpp"
 #include "matpoint/implicit/particle_newmark/element_flags.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_system.hpp"
 #include "matpoint/mesh/point_locator.hpp"
@@ -168,15 +169,23 @@ class ParticleNewmarkStepper {
   void commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state, const Eigen::VectorXd& u,
               double dt);
   /// The velocity at t^n behind each face of background element e: an FE body's, taken at the
-  /// face's last node (a Q9 face's mid-side node, as the authors' code, A4), or 0.
+  /// face's mid-side node on quadratic faces (Q9, T6: the authors' code, A4) and as the mean of the
+  /// two corners on linear ones (Q4, T3), where every node of the face is an FE node; else 0.
   FaceVelocities<E> interface_velocities(Index e) const {
     FaceVelocities<E> out = walls_at_rest<E>();
     if constexpr (D == 2) {
       const auto nodes = mesh_.element_nodes(e);
+      const auto node = [&](int local) { return static_cast<std::size_t>(nodes[static_cast<std::size_t>(local)]); };
       for (int f = 0; f < E::kFaces; ++f) {
         const auto face = E::faces()[static_cast<std::size_t>(f)];
-        const auto n = static_cast<std::size_t>(nodes[static_cast<std::size_t>(face.back())]);
-        if (fe_.node_mask()[n] != 0) out[static_cast<std::size_t>(f)] = fe_.velocity[n];
+        bool on_fe_body = true;
+        for (int local : face) on_fe_body = on_fe_body && fe_.node_mask()[node(local)] != 0;
+        if (!on_fe_body) continue;
+        static_assert(E::kNodesPerFace == 2 || E::kNodesPerFace == 3, "2-D faces: two corners (+ a mid-side node)");
+        if constexpr (E::kNodesPerFace == 3)
+          out[static_cast<std::size_t>(f)] = fe_.velocity[node(face[2])];
+        else
+          out[static_cast<std::size_t>(f)] = 0.5 * (fe_.velocity[node(face[0])] + fe_.velocity[node(face[1])]);
       }
     }
     return out;
@@ -208,7 +217,8 @@ class ParticleNewmarkStepper {
                                       : nullptr;
   }
 
-  /// Iaconeta eqs. (38)-(41): the nodal v~_I = sum_p N_I m_p v_p / m_I and a~_I likewise.
+  /// Iaconeta eqs. (38)-(41): the nodal v~_I, a~_I (lumped; consistent for quadratic elements,
+  /// nodal_projection.hpp).
   void project_to_nodes(const ParticleSet<D>& particles, const ImplicitParticleState<D>& state);
   /// The known part of particle p's acceleration (a_p = u~_p / (beta dt^2) + known): eq. (21) at the
   /// particle, or Newmark's nodal predictor interpolated to it, or 0 in a static analysis.
@@ -242,23 +252,9 @@ class ParticleNewmarkStepper {
 template <class E, class Material>
 void ParticleNewmarkStepper<E, Material>::project_to_nodes(const ParticleSet<D>& particles,
                                                            const ImplicitParticleState<D>& state) {
-  const auto nodes = static_cast<std::size_t>(mesh_.node_count());
-  std::vector<double> mass(nodes, 0.0);
-  node_velocity_.assign(nodes, Vec<D>::Zero());
-  node_acceleration_.assign(nodes, Vec<D>::Zero());
-  for (std::size_t p = 0; p < particles.size(); ++p) {  // serial: a scatter, cheap beside the assembly
-    const auto N = E::values(state.xi[p]);
-    const auto element = mesh_.element_nodes(state.element[p]);
-    for (int I = 0; I < E::kNodes; ++I) {
-      const auto n = static_cast<std::size_t>(element[static_cast<std::size_t>(I)]);
-      const double w = N[I] * particles.mass[p];
-      mass[n] += w;
-      node_velocity_[n] += w * particles.v[p];
-      node_acceleration_[n] += w * state.acceleration[p];
-    }
-  }
-  for (std::size_t n = 0; n < nodes; ++n)
-    if (mass[n] > 0.0) node_velocity_[n] /= mass[n], node_acceleration_[n] /= mass[n];
+  implicit::project_to_nodes<E>(
+      mesh_, {state.element, state.xi, particles.mass, particles.v, state.acceleration}, node_velocity_,
+      node_acceleration_);
 }
 
 template <class E, class Material>

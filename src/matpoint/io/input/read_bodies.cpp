@@ -54,8 +54,8 @@ BodySpec SpecReader::read_body(const Value& v, std::size_t index) {
 }
 
 /// placement: "uniform" (the default: particles at the centres of ppc^D equal sub-cells) or "gauss"
-/// (at the 2 x 2 (x 2) Gauss points of each cell, each with a quarter (eighth) of the cell's
-/// volume: a finite-element quadrature, as Iaconeta 2017 §4.1 places its material points; on a
+/// (at the 2 x 2 (x 2) or, with particles_per_cell 3, the 3 x 3 (x 3) Gauss points of each cell, each
+/// with its weight's share of the cell's volume: a finite-element quadrature, 3 x 3 for Q9, as Iaconeta 2017 §4.1 places its material points; on a
 /// structured T3 mesh at the 3 points of the degree-2 rule of each triangle, each with a third of
 /// its area, Iaconeta 2017 §5.2's three material points per cell).
 void SpecReader::read_placement(const Object& b, BodySpec& out) const {
@@ -72,8 +72,9 @@ void SpecReader::read_placement(const Object& b, BodySpec& out) const {
     return;
   }
   out.gauss_points = *text == "gauss";
-  if (out.gauss_points && out.particles_per_cell != 2)
-    placement.fail("\"uniform\" unless particles_per_cell is 2 (\"gauss\" places 2 per direction)");
+  if (out.gauss_points && out.particles_per_cell != 2 && out.particles_per_cell != 3)
+    placement.fail("\"uniform\" unless particles_per_cell is 2 or 3 (\"gauss\" places the 2- or 3-point "
+                   "Gauss-Legendre rule per direction)");
   if (out.gauss_points && (out.shape == BodyShape::GradedDisk || out.shape == BodyShape::GradedBeam))
     placement.fail("\"uniform\" (a graded body places its own particles)");
 }

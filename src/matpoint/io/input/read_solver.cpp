@@ -145,12 +145,6 @@ void SpecReader::read_implicit(const Object& s) {
                   "analysis", "kinematics"});
   ImplicitSpec& m = out.implicit;
   if (out.kind == SolverKind::ImplicitUl) m.beta = 0.25;  // Iaconeta 2017 §4.1.1: zeta = 0.25, lambda = 0.5
-  if (out.kind == SolverKind::ImplicitUl && spec_.mesh.file.empty() && spec_.mesh.element == MeshElement::Q9)
-    issues_.add(
-        "mesh.element", "\"q9\"",
-        "\"q4\" or \"hex8\" under solver.type \"implicit_ul\": its projection of the particles' momentum "
-        "to the nodes (Iaconeta 2017 eqs. (38)-(41)) needs shape functions >= 0, and quadratic ones are "
-        "negative in places (nodal masses near 0 or below)");
   const auto analysis = o.optional("analysis").string();
   if (analysis && *analysis != "dynamic" && *analysis != "static")
     o.optional("analysis").fail("\"dynamic\" or \"static\" (no inertia: equilibrium under each step's load)");
