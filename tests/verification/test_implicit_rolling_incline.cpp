@@ -101,29 +101,4 @@ TEST(ImplicitRollingIncline, OneSidedNoSlipFloorRollsAtTwoThirdsGSinTheta) {
               glued);
 }
 
-// Quadratic Q9 background cells under implicit_ul (the consistent projection of the particles'
-// velocity and acceleration to the nodes, implicit/particle_newmark/nodal_projection.hpp: Q9's
-// lumped nodal masses can be near zero or negative). A rigid translation lies in Q9's space, so the
-// frictionless slide from a^0 = g must be exact as on T3 (3/2 within the same 1e-3); the no-slip
-// one-sided floor must roll at 2/3 g sin(theta) within the 3 %. Q9 with 3 x 3 uniformly
-// placed particles per cell (R / h = 5, the T3 runs' cell size).
-TEST(ImplicitRollingIncline, QuadraticQ9CellsSlideAndRoll) {
-  const auto q9 = [](json& s) {
-    s["mesh"]["element"] = "q9";
-    s["mesh"].erase("diagonal");
-    s["bodies"][0]["placement"] = "uniform";
-    s["bodies"][0]["particles_per_cell"] = 3;
-  };
-  const double slide = ratio(incline("input.json",
-                                     [&](json& s) {
-                                       q9(s);
-                                       s["solver"]["implicit"] = {{"initial_acceleration", "body_force"}};
-                                     }),
-                             "q9_slide");
-  EXPECT_NEAR(slide, 1.5, 1e-3);
-  const double roll = ratio(incline("no-slip.json", q9), "q9_roll");
-  EXPECT_NEAR(roll, 1.0, 0.03);
-  std::printf("Q9: frictionless slide %.4f (3/2), one-sided no-slip floor %.4f (1)\n", slide, roll);
-}
-
 }  // namespace

@@ -66,6 +66,14 @@ class ImplicitMpmSolver {
         sim_(build_simulation<D>(without_conditions(spec))),
         mesh_(std::move(background)),
         step_size_(spec.solver) {
+    // Iaconeta's projection to the nodes (eqs. (38)-(41), nodal_projection.hpp) divides by
+    // sum_p N_I m_p: quadratic elements (Q9, T6) have negative shape values and nodal masses near 0
+    // or below. A static analysis has no projection.
+    if (spec.solver.kind == SolverKind::ImplicitUl && E::kDegree >= 2 && !spec.solver.implicit.static_analysis)
+      throw InputError({{"mesh.file", spec.mesh.file,
+                         "a mesh of linear elements (T3, Q4, Hex8) for a dynamic solver.type \"implicit_ul\" "
+                         "(quadratic ones only with implicit.analysis \"static\"; the projection of eqs. "
+                         "(38)-(41) needs shape functions >= 0)"}});
     std::vector<char> dirichlet(static_cast<std::size_t>(mesh_.node_count() * D), 0);
     std::vector<char> on_condition(static_cast<std::size_t>(mesh_.node_count()), 0);
     std::map<std::pair<Index, int>, double> receding;

@@ -217,8 +217,7 @@ class ParticleNewmarkStepper {
                                       : nullptr;
   }
 
-  /// Iaconeta eqs. (38)-(41): the nodal v~_I, a~_I (lumped; consistent for quadratic elements,
-  /// nodal_projection.hpp).
+  /// Iaconeta eqs. (38)-(41): the nodal v~_I, a~_I (nodal_projection.hpp).
   void project_to_nodes(const ParticleSet<D>& particles, const ImplicitParticleState<D>& state);
   /// The known part of particle p's acceleration (a_p = u~_p / (beta dt^2) + known): eq. (21) at the
   /// particle, or Newmark's nodal predictor interpolated to it, or 0 in a static analysis.
@@ -252,7 +251,7 @@ class ParticleNewmarkStepper {
 template <class E, class Material>
 void ParticleNewmarkStepper<E, Material>::project_to_nodes(const ParticleSet<D>& particles,
                                                            const ImplicitParticleState<D>& state) {
-  implicit::project_to_nodes<E>(
+  lumped_projection<E>(
       mesh_, {state.element, state.xi, particles.mass, particles.v, state.acceleration}, node_velocity_,
       node_acceleration_);
 }

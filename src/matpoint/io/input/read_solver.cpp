@@ -149,6 +149,13 @@ void SpecReader::read_implicit(const Object& s) {
   if (analysis && *analysis != "dynamic" && *analysis != "static")
     o.optional("analysis").fail("\"dynamic\" or \"static\" (no inertia: equilibrium under each step's load)");
   if (analysis) m.static_analysis = *analysis == "static";
+  if (out.kind == SolverKind::ImplicitUl && !m.static_analysis && spec_.mesh.file.empty() &&
+      spec_.mesh.element == MeshElement::Q9)
+    issues_.add("mesh.element", "\"q9\"",
+                "\"q4\" or \"hex8\" for a dynamic solver.type \"implicit_ul\" (Q9 only with implicit.analysis "
+                "\"static\"): the projection of the particles' momentum to the nodes (Iaconeta 2017 eqs. "
+                "(38)-(41)) needs shape functions >= 0, and quadratic ones are negative in places "
+                "(docs/theory/implicit.md)");
   const auto kinematics = o.optional("kinematics").string();
   if (kinematics && *kinematics != "finite" && *kinematics != "small")
     o.optional("kinematics").fail("\"finite\" or \"small\" (geometrically linear with Hooke's law)");
