@@ -19,7 +19,9 @@
 //   mpicxx -O2 -std=c++20 bench/halo_exchange.cpp -o /tmp/halo_exchange $(pkg-config --cflags --libs PETSc)
 // Run (as root OpenMPI needs the two OMPI_ALLOW_* variables; more ranks than cores: --oversubscribe):
 //   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -n 2 --oversubscribe /tmp/halo_exchange
-// Arguments (optional): sizes as N[:repetitions] ..., e.g. `256:2000 1024:400 2048:150` (the default).
+// Arguments (optional): sizes as N[:repetitions] ..., e.g. `256:2000 1024:400 2048:150` (the default);
+// HALO_METHODS=mpi (or dmda, sf, a comma list) runs only those methods; HALO_PERCENTILES=1 also
+// prints p10 / p25 / p50 / p75 / p90 / max of each method.
 
 #include <petscdmda.h>
 #include <petscsf.h>
@@ -227,6 +229,15 @@ int main(int argc, char** argv) {
                      colon == std::string::npos ? 200 : std::atoi(word.substr(colon + 1).c_str())});
   }
   if (sizes.empty()) sizes = {{256, 2000}, {1024, 400}, {2048, 150}};
+  // HALO_METHODS (optional): the methods to run, e.g. "mpi" or "dmda,sf"; the others print 0.
+  bool use[3] = {true, true, true};
+  if (const char* only = std::getenv("HALO_METHODS")) {
+    const std::string list = only;
+    use[0] = list.find("dmda") != std::string::npos;
+    use[1] = list.find("mpi") != std::string::npos;
+    use[2] = list.find("sf") != std::string::npos;
+  }
+  const bool percentiles = std::getenv("HALO_PERCENTILES") != nullptr;
   int no_args = 1;
   char* no_argv_storage[] = {argv[0], nullptr};
   char** no_argv = no_argv_storage;
@@ -281,7 +292,8 @@ int main(int argc, char** argv) {
       long wrong[3] = {0, 0, 0};
       for (int rep = -warm_up; rep < size.repetitions; ++rep) {
         double t[3];
-        {  // dmda
+        t[0] = t[1] = t[2] = 0.0;
+        if (use[0]) {  // dmda
           PetscScalar* a;
           PetscCall(VecGetArray(local, &a));
           fill(a, box.nodes());
@@ -301,7 +313,7 @@ int main(int argc, char** argv) {
             PetscCall(VecRestoreArrayRead(local, &r));
           }
         }
-        {  // plain MPI
+        if (use[1]) {  // plain MPI
           fill(plain.data(), box.nodes());
           MPI_Barrier(PETSC_COMM_WORLD);
           const double t0 = MPI_Wtime();
@@ -309,7 +321,7 @@ int main(int argc, char** argv) {
           t[1] = MPI_Wtime() - t0;
           if (rep == 0) wrong[1] = check(part, me, plain.data());
         }
-        {  // PetscSF on the same arrays
+        if (use[2]) {  // PetscSF on the same arrays
           fill(sf_array.data(), box.nodes());
           double* a = sf_array.data();
           MPI_Barrier(PETSC_COMM_WORLD);
@@ -341,6 +353,18 @@ int main(int argc, char** argv) {
                     8.0 * static_cast<double>(sent) / 1024.0, ok ? "ok" : "WRONG");
         if (!ok) std::printf(" (wrong nodes: dmda %ld, mpi %ld, sf %ld)", wrong[0], wrong[1], wrong[2]);
         std::printf("\n");
+        if (percentiles) {  // HALO_PERCENTILES=1: the distribution (a loaded machine skews the median)
+          const char* names[3] = {"dmda", "mpi", "sf"};
+          const std::vector<double>* times[3] = {&t_dmda, &t_mpi, &t_sf};
+          for (int k = 0; k < 3; ++k) {
+            if (!use[k]) continue;
+            std::vector<double> v = *times[k];
+            std::sort(v.begin(), v.end());
+            const auto at = [&](double q) { return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))]; };
+            std::printf("       %-4s p10 %.4f p25 %.4f p50 %.4f p75 %.4f p90 %.4f max %.4f\n", names[k], at(0.1),
+                        at(0.25), at(0.5), at(0.75), at(0.9), v.back());
+          }
+        }
         std::fflush(stdout);
       }
       PetscCall(PetscSFDestroy(&sf));
