@@ -118,7 +118,7 @@ struct BodySpec {
   int core_divisions = 300;    // N_theta0, particles on the disk core's outer ring; the beam's N_H rows
   double layer_growth = 1.14;  // f: each layer 1/f as thick, f times as many particles
   double core_height = 0;      // H0, the beam's uniform core (box min/max: the beam)
-  bool gauss_points = false;  // particles at the 2 x 2 (x 2) Gauss points of each cell (particles_per_cell 2)
+  bool gauss_points = false;  // particles at the 2- or 3-point Gauss-Legendre points per direction (particles_per_cell 2, 3)
   // placement "gauss" on a structured T3 mesh: 3 particles per triangle, the cells split as the mesh's
   std::optional<mesh::TrianglePattern> triangle_points;
 };
