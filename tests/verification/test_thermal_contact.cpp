@@ -156,17 +156,37 @@ ProfileError two_bars(const Bar& left, const Bar& right, double h) {
 
 TEST(ThermalContact, PerfectContactOfTwoBarsMatchesTheErfcPair) {
   // Equal bars (T_i = 350 K) and unequal ones: rho 2, kappa 4 on the right (e2 = sqrt(8) e1,
-  // a2 = 2 a1, T_i = 326.2 K). h = 0.01 and 0.005 (sqrt(a1 t) / 5 and / 10).
+  // a2 = 2 a1, T_i = 326.2 K). h = 0.01 and 0.005 (sqrt(a1 t) / 5 and / 10). The observed order
+  // log2(coarse / fine) against the expected one:
+  //  - equal bars: the strip is one bar of one material with a step, so the profile converges as
+  //    the single-body conduction does, order 2 (the sine mode of test_heat_conduction.cpp); the
+  //    interface stays at T_i = (T1 + T2) / 2 by symmetry, to round-off (no order to measure);
+  //  - unequal bars: the interface node's capacity and conduction mix the two diffusivities over
+  //    the half cell on each side, an O(h) error in the interface temperature that the profile
+  //    inherits: order 1 for both.
+  // Measured (docs/verification.md): equal 3.37e-4 -> 8.43e-5 (2.00); unequal profile 2.67e-3 ->
+  // 1.41e-3 (0.92), interface 3.85e-3 -> 1.94e-3 (0.99). The bands 1.8 - 2.2 and 0.8 - 1.2 hold
+  // the measured orders with 0.1 - 0.2 to spare and exclude the neighbouring orders (1, 2).
   const Bar unit{1, 1, 1}, dense{2, 1, 4};
+  const auto order = [](double coarse, double fine) { return std::log2(coarse / fine); };
   for (const auto& [name, right] : {std::pair{"equal", unit}, std::pair{"unequal", dense}}) {
     const ProfileError coarse = two_bars(unit, right, 0.01), fine = two_bars(unit, right, 0.005);
+    const double profile_order = order(coarse.profile, fine.profile);
     std::printf(
-        "two bars (%s): h = 0.01: profile %.3e, interface %.3e; h = 0.005: profile %.3e, interface %.3e\n",
-        name, coarse.profile, coarse.interface, fine.profile, fine.interface);
-    EXPECT_LT(fine.profile, 0.01) << name;            // within 1 % of T1 - T2 beyond the interface's cells
-    EXPECT_LT(fine.profile, coarse.profile) << name;  // converging under refinement
+        "two bars (%s): h = 0.01: profile %.3e, interface %.3e; h = 0.005: profile %.3e, interface %.3e; "
+        "order: profile %.2f, interface %.2f\n",
+        name, coarse.profile, coarse.interface, fine.profile, fine.interface, profile_order,
+        order(coarse.interface, fine.interface));
+    EXPECT_LT(fine.profile, 0.01) << name;  // within 1 % of T1 - T2 beyond the interface's cells
     EXPECT_LT(fine.interface, 0.01) << name;
-    EXPECT_LE(fine.interface, coarse.interface + 1e-12) << name;
+    if (std::string(name) == "equal") {
+      EXPECT_NEAR(profile_order, 2.0, 0.2) << name;
+      EXPECT_LT(coarse.interface, 1e-12) << name;  // (T1 + T2) / 2 by symmetry
+      EXPECT_LT(fine.interface, 1e-12) << name;
+    } else {
+      EXPECT_NEAR(profile_order, 1.0, 0.2) << name;
+      EXPECT_NEAR(order(coarse.interface, fine.interface), 1.0, 0.2) << name;
+    }
   }
 }
 
