@@ -115,6 +115,7 @@ class HeatTransport {
   }
 
   [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
+  [[nodiscard]] const ThermalContactCoupling<D>& contact() const { return contact_; }
 
  private:
   static FmpmSpec transport_fmpm(const HeatSpec& h) {

@@ -22,12 +22,6 @@ namespace matpoint {
             "docs/input.md)";
     out.push_back(text.str());
   }
-  if (spec.heat.enabled && spec.heat.contact == ThermalContact::Conductance)
-    out.push_back(
-        "heat.contact \"conductance\": the nodal contact area is estimated from the bodies' volume "
-        "gradients, exact where the interface lies on grid lines; with the interface inside a cell the "
-        "shared free surfaces do not cancel and the area, hence the heat exchanged, comes out too large "
-        "(1.8 times on a strip cut mid-cell; docs/theory/heat.md \"Contact\")");
   return out;
 }
 

@@ -31,6 +31,7 @@ void SpecReader::read_contact(const Value& v) {
       v.fail("a \"contact\" object (a rigid material moves its own velocity field, which needs contact)");
     return;
   }
+  contact_given_ = true;
   const Object c(v, {"law", "friction", "normals", "separation", "fmpm_method", "fields", "pairs"});
   if (!c.valid()) return;
   ContactSpec& out = spec_.contact;

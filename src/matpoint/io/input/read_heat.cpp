@@ -78,10 +78,17 @@ void SpecReader::read_thermal_conditions(const Value& list) {
   }
 }
 
-/// "contact": "perfect" (default) | "conductance" (with "contact_conductance": h_c > 0) | "insulated".
+/// "contact": "perfect" (default) | "conductance" (with "contact_conductance": h_c > 0) | "insulated",
+/// only with a "contact" section: without one every body shares one velocity field and one
+/// temperature field, so nothing is between bodies and the key would be ignored.
 void SpecReader::read_thermal_contact(const Object& h) {
   HeatSpec& out = spec_.heat;
-  set_if(out.contact, h.optional("contact").choice(kThermalContacts));
+  const Value mode = h.optional("contact");
+  set_if(out.contact, mode.choice(kThermalContacts));
+  if (mode.present() && !contact_given_)
+    mode.fail(
+        "no heat.contact without a \"contact\" section (without contact the bodies share one temperature "
+        "field and conduct as one body; add \"contact\" or remove heat.contact)");
   const Value conductance = h.optional("contact_conductance");
   if (out.contact == ThermalContact::Conductance)
     set_if(out.contact_conductance, h.required("contact_conductance").number(kPositive));
@@ -89,11 +96,15 @@ void SpecReader::read_thermal_contact(const Object& h) {
     conductance.fail("no contact_conductance unless contact is \"conductance\"");
 }
 
-/// [{"body": name, "temperature": T}, ...]: initial temperatures in place of initial_temperature.
+/// [{"body": name, "temperature": T}, ...]: initial temperatures in place of initial_temperature,
+/// each body at most once (a second entry would silently override the first).
 void SpecReader::read_body_temperatures(const Value& list) {
   std::vector<std::string> names;
   for (const auto& b : spec_.bodies) names.push_back(b.name);
+  std::vector<std::size_t> given(names.size(), 0);  // 1 + the entry that set each body
+  std::size_t index = 0;
   for (const auto& item : list.elements("an array of {\"body\": name, \"temperature\": T}")) {
+    const std::size_t entry = index++;
     const Object b(item, {"body", "temperature"});
     if (!b.valid()) continue;
     const Value body = b.required("body");
@@ -103,6 +114,13 @@ void SpecReader::read_body_temperatures(const Value& list) {
       body.fail("the name of a body: " + join(names, true));
       continue;
     }
+    auto& first = given[static_cast<std::size_t>(it - names.begin())];
+    if (first != 0) {
+      body.fail("each body at most once (\"" + *name + "\" is already at heat.body_temperatures[" +
+                std::to_string(first - 1) + "])");
+      continue;
+    }
+    first = entry + 1;
     const auto T = b.required("temperature").number(kPositive);
     if (T) spec_.heat.body_temperatures.emplace_back(static_cast<int>(it - names.begin()), *T);
   }

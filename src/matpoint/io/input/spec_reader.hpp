@@ -250,6 +250,7 @@ class SpecReader {
   int dim_ = 0;                  // grid.dim, 0 while unknown (missing or invalid)
   bool grid_ok_ = false;         // the grid has no issue: bodies can be checked against it
   bool names_complete_ = false;  // every material has a valid name: bodies' references can be checked
+  bool contact_given_ = false;    // the input has a "contact" section (valid or not)
 };
 
 }  // namespace matpoint::input_detail
