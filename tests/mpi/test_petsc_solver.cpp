@@ -15,29 +15,14 @@
 
 #include "matpoint/core/parallel_session.hpp"
 #include "matpoint/implicit/linear_solver.hpp"
+#include "linear_test_systems.hpp"
 
 namespace {
 
 using namespace matpoint;
 using namespace matpoint::implicit;
 
-/// -Laplace + upwind convection on an m x m grid (nonsymmetric, nonsingular).
-SparseMatrix convection_diffusion(int m) {
-  std::vector<Eigen::Triplet<double, int>> t;
-  const auto id = [m](int i, int j) { return i * m + j; };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) {
-      t.emplace_back(id(i, j), id(i, j), 4.0 + 3.0);
-      if (i > 0) t.emplace_back(id(i, j), id(i - 1, j), -1.0 - 2.0);
-      if (i + 1 < m) t.emplace_back(id(i, j), id(i + 1, j), -1.0);
-      if (j > 0) t.emplace_back(id(i, j), id(i, j - 1), -1.0 - 1.0);
-      if (j + 1 < m) t.emplace_back(id(i, j), id(i, j + 1), -1.0);
-    }
-  SparseMatrix a(m * m, m * m);
-  a.setFromTriplets(t.begin(), t.end());
-  a.makeCompressed();
-  return a;
-}
+using test::convection_diffusion;
 
 Eigen::VectorXd chosen_solution(Eigen::Index n) {
   Eigen::VectorXd x(n);

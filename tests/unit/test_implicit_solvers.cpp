@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "matpoint/implicit/linear_solver.hpp"
+#include "linear_test_systems.hpp"
 #include "matpoint/implicit/newton.hpp"
 #include "matpoint/implicit/particle_newmark/element_flags.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_system.hpp"
@@ -55,23 +56,7 @@ TEST(ImplicitAssembly, OverlappingBlocksSumAndDirichletRowsAreIdentity) {
   EXPECT_EQ(a.colour_count(), 2);
 }
 
-/// The nonsymmetric test matrix: -Laplace + upwind convection on an m x m grid.
-SparseMatrix convection_diffusion(int m) {
-  std::vector<Eigen::Triplet<double, int>> t;
-  const auto id = [m](int i, int j) { return i * m + j; };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) {
-      t.emplace_back(id(i, j), id(i, j), 4.0 + 3.0);
-      if (i > 0) t.emplace_back(id(i, j), id(i - 1, j), -1.0 - 2.0);
-      if (i + 1 < m) t.emplace_back(id(i, j), id(i + 1, j), -1.0);
-      if (j > 0) t.emplace_back(id(i, j), id(i, j - 1), -1.0 - 1.0);
-      if (j + 1 < m) t.emplace_back(id(i, j), id(i, j + 1), -1.0);
-    }
-  SparseMatrix A(m * m, m * m);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  return A;
-}
+using test::convection_diffusion;
 
 TEST(ImplicitLinearSolver, EveryBackEndSolvesANonsymmetricSystem) {
   const SparseMatrix A = convection_diffusion(20);
