@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -269,38 +270,25 @@ class ThermalContactCoupling {
   /// along the interface's normal (for h_n).
   template <class Kernel, class Stencils>
   void volumes(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& ps) {
-    using Domain = GimpBasis<Kernel, DomainWidth::Stretched>;
-    constexpr int W = Domain::width;
+    auto& domains = domain_stencils<Kernel>();
+    domains.evaluate(grid, ps);
     volume_.assign(static_cast<std::size_t>(grid.node_count), 0.0);
     gradient_.assign(static_cast<std::size_t>(grid.node_count), Vec<D>::Zero());
-    std::array<double, D * W> w{}, dw{};
     for (std::size_t p = 0; p < ps.size(); ++p) {
-      std::array<int, D> lowest{};
-      for (int a = 0; a < D; ++a) {
-        const double xi = (ps.x[p][a] - grid.origin[a]) / grid.h[a];
-        lowest[a] = Domain::evaluate(xi, gimp_half_width<Domain, D>(grid, ps, p, a), grid.cells[a], &w[a * W],
-                                     &dw[a * W]);
-        for (int k = 0; k < W; ++k) dw[a * W + k] /= grid.h[a];
-      }
-      const Index base = grid.node_index(lowest) + stencils.offset[p];  // on the particle's field
       const double V = ps.volume(p);
-      std::array<int, D> k{};
-      for (;;) {  // the tensor product over the W^D nodes of the domain's stencil
-        Index node = base;
-        double N = 1.0;
-        Vec<D> dN = Vec<D>::Ones();
-        for (int a = 0; a < D; ++a) {
-          node += k[a] * grid.stride[a];
-          N *= w[a * W + k[a]];
-          for (int b = 0; b < D; ++b) dN[b] *= (a == b ? dw : w)[a * W + k[a]];
-        }
+      domains.for_each_node(grid, p, [&](Index node, double N, const Vec<D>& dN) {
+        node += stencils.offset[p];  // on the particle's field
         volume_[node] += V * N;
         gradient_[node] += V * dN;
-        int a = 0;
-        while (a < D && ++k[a] == W) k[a++] = 0;
-        if (a == D) break;
-      }
+      });
     }
+  }
+  /// The stretched-GIMP stencils of Kernel over the particles' domains (kept: evaluated each step).
+  template <class Kernel>
+  TensorStencils<D, GimpBasis<Kernel, DomainWidth::Stretched>>& domain_stencils() {
+    static_assert(std::is_same_v<Kernel, HatKernel> || std::is_same_v<Kernel, QuadraticKernel> ||
+                  std::is_same_v<Kernel, CubicKernel>);
+    return std::get<TensorStencils<D, GimpBasis<Kernel, DomainWidth::Stretched>>>(domain_stencils_);
   }
 
   ThermalContact mode_ = ThermalContact::Insulated;
@@ -314,6 +302,10 @@ class ThermalContactCoupling {
   std::vector<Pair> pairs_;                     // conductance: the contacts of this step
   std::vector<double> volume_;                  // V_f,i
   std::vector<Vec<D>> gradient_;                // g_f,i
+  std::tuple<TensorStencils<D, GimpBasis<HatKernel, DomainWidth::Stretched>>,
+             TensorStencils<D, GimpBasis<QuadraticKernel, DomainWidth::Stretched>>,
+             TensorStencils<D, GimpBasis<CubicKernel, DomainWidth::Stretched>>>
+      domain_stencils_;  // the particles' domains (volumes()), one per kernel
 };
 
 }  // namespace matpoint
