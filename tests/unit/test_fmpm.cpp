@@ -25,7 +25,6 @@ struct Problem {
   ParticleSet<D> particles;
   TensorStencils<D, Basis> stencils;
   GridFields<D> fields;
-  ScatterWorkspace<D> ws;
   std::vector<Vec<D>> v1;  // m^-1 p+
 
   explicit Problem(int cells, int count = 60, bool uniform_velocity = false, unsigned seed = 3) {
@@ -46,7 +45,7 @@ struct Problem {
     stencils.evaluate(grid, particles);
     fields.resize(grid.node_count);
     scatter_to_grid<kScatterMass | kScatterMomentum>(grid, stencils, particles, Vec<D>(Vec<D>::Zero()),
-                                                     fields, ws);
+                                                     fields);
     v1.resize(grid.node_count);
     lumped_velocity(fields, 0.0, v1);
   }
@@ -55,7 +54,7 @@ struct Problem {
                            int* order = nullptr) {
     std::vector<Vec<D>> v = v1;
     FmpmLoop<D> loop(spec);
-    const int reached = loop.run(grid, stencils, particles, fields.mass, 0.0, conditions, 0.0, v, ws);
+    const int reached = loop.run(grid, stencils, particles, fields.mass, 0.0, conditions, 0.0, v);
     if (order) *order = reached;
     return v;
   }
@@ -243,7 +242,7 @@ TEST(Fmpm, BlendingReproducesItsSeries) {
       std::vector<Vec<1>> next;
       FmpmLoop<1> loop(order(2));
       loop.apply_projection(problem.grid, problem.stencils, problem.particles, problem.fields.mass, 0.0,
-                            powers.back(), next, problem.ws);
+                            powers.back(), next);
       for (std::size_t i = 0; i < next.size(); ++i) next[i] = powers.back()[i] - next[i];
       powers.push_back(next);
     }
@@ -276,9 +275,8 @@ TEST(FmpmTransport, ScalarLoopWithMassWeightsReproducesEachVelocityComponent) {
     for (std::size_t i = 0; i < T.size(); ++i) T[i] = problem.v1[i][a];
     FmpmLoop<2, double> loop(order(5));
     loop.set_particle_weights(&problem.particles.mass);
-    ScalarScatterWorkspace ws;
     loop.run(problem.grid, problem.stencils, problem.particles, problem.fields.mass, 0.0,
-             ThermalConditions<2>{}, 0.0, T, ws);
+             ThermalConditions<2>{}, 0.0, T);
     for (std::size_t i = 0; i < T.size(); ++i) EXPECT_NEAR(T[i], velocity[i][a], 1e-13) << "node " << i;
   }
 }

@@ -1,15 +1,16 @@
-// Threads: the same input gives the same result on one and two threads, to round-off (the
-// scatter sums thread bands in a fixed order; only reductions of diagnostics regroup sums), and
-// bitwise the same result when run twice on the same thread count.
-#include "test_support.hpp"
+// Threads: the same input gives bitwise the same particles on one, two and three threads. Every
+// particle-to-grid sum visits the particles in the stencils' brick order (grid/brick_schedule.hpp),
+// so each node adds its terms in one order whatever the thread count (docs/scale-out.md §6). Before
+// the brick order, one and two threads differed by 5e-9 in the velocities of a two-disks run after
+// the impact (the thread bands regrouped the boundary sums).
+#include <gtest/gtest.h>
+#include <omp.h>
 
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
-
-#include <gtest/gtest.h>
-#include <omp.h>
+#include "test_support.hpp"
 
 namespace {
 
@@ -38,30 +39,27 @@ ParticleSet<2> run_two_disks(int threads, ShapeKind shape = ShapeKind::BSpline2)
 template <class Stencils = TensorStencils<2, QuadraticBSplineBasis>>
 void check_threads_agree(ShapeKind shape = ShapeKind::BSpline2) {
   const auto one = run_two_disks<Stencils>(1, shape);
-  const auto two = run_two_disks<Stencils>(2, shape);
-  const auto again = run_two_disks<Stencils>(2, shape);
-  ASSERT_EQ(one.size(), two.size());
-  double dx = 0, dv = 0, ds = 0, smax = 0;
-  for (std::size_t p = 0; p < one.size(); ++p) {
-    ASSERT_EQ(one.id[p], two.id[p]);
-    dx = std::max(dx, (one.x[p] - two.x[p]).norm());
-    dv = std::max(dv, (one.v[p] - two.v[p]).norm());
-    ds = std::max(ds, (one.stress[p] - two.stress[p]).norm());
-    smax = std::max(smax, one.stress[p].norm());
-    EXPECT_EQ(two.x[p], again.x[p]) << "same thread count must be bitwise reproducible";
-    EXPECT_EQ(two.stress[p], again.stress[p]);
-  }
+  double smax = 0;
+  for (std::size_t p = 0; p < one.size(); ++p) smax = std::max(smax, one.stress[p].norm());
   EXPECT_GT(smax, 1.0) << "the disks must have collided for the test to mean something";
-  EXPECT_LT(dx, 1e-13);
-  EXPECT_LT(dv, 1e-12);
-  EXPECT_LT(ds, 1e-10 * smax);
+  for (const int threads : {2, 3}) {
+    const auto other = run_two_disks<Stencils>(threads, shape);
+    ASSERT_EQ(one.size(), other.size());
+    std::size_t differ = 0;
+    for (std::size_t p = 0; p < one.size(); ++p) {
+      ASSERT_EQ(one.id[p], other.id[p]);
+      if (one.x[p] != other.x[p] || one.v[p] != other.v[p] || one.stress[p] != other.stress[p]) ++differ;
+    }
+    EXPECT_EQ(differ, 0u) << threads << " threads: particles whose position, velocity or stress differ "
+                          << "in any bit from the one-thread run";
+  }
 }
 
-TEST(Threads, OneAndTwoThreadsAgreeToRoundOff) { check_threads_agree(); }
+TEST(Threads, OneTwoAndThreeThreadsAgreeBitwise) { check_threads_agree(); }
 
 /// The domain bases: per-particle half-widths (B2GIMP) and per-particle node boxes with tracked
-/// corners (CPDI2) go through the same banded scatter (Stencils::node_span).
-TEST(Threads, OneAndTwoThreadsAgreeWithDomainBases) {
+/// corners (CPDI2) go through the same brick order (their bricks from the node box's lowest node).
+TEST(Threads, OneTwoAndThreeThreadsAgreeBitwiseWithDomainBases) {
   check_threads_agree<TensorStencils<2, B2GimpBasis>>(ShapeKind::B2GIMP);
   check_threads_agree<CpdiStencils<2, HatKernel, CpdiDomain::Tracked>>(ShapeKind::CPDI2);
 }

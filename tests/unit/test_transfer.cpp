@@ -1,19 +1,20 @@
 // Particle-grid transfers: P2G conserves mass and momentum, G2P (PIC) returns the grid momentum to
 // the particles, a uniform velocity field (rigid translation) gives zero velocity gradient and zero
 // stress. All identities are exact in exact arithmetic, so the bounds are round-off.
-#include "matpoint/explicit/explicit_step.hpp"
-#include "matpoint/shape/tensor_bases.hpp"
-#include "matpoint/shape/tensor_stencils.hpp"
-
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "matpoint/explicit/explicit_step.hpp"
+#include "matpoint/shape/tensor_bases.hpp"
+#include "matpoint/shape/tensor_stencils.hpp"
 
 namespace {
 
 using namespace matpoint;
 
-template <int D> Simulation<D> random_particles(int cells, ShapeKind shape, const Vec<D>& drift) {
+template <int D>
+Simulation<D> random_particles(int cells, ShapeKind shape, const Vec<D>& drift) {
   Simulation<D> sim;
   std::array<int, D> n{};
   n.fill(cells);
@@ -35,12 +36,14 @@ template <int D> Simulation<D> random_particles(int cells, ShapeKind shape, cons
   return sim;
 }
 
-template <int D, class Basis> void check_conservation() {
-  auto sim = random_particles<D>(6, Basis::width == 2 ? ShapeKind::Linear : ShapeKind::BSpline2, Vec<D>::Zero());
+template <int D, class Basis>
+void check_conservation() {
+  auto sim =
+      random_particles<D>(6, Basis::width == 2 ? ShapeKind::Linear : ShapeKind::BSpline2, Vec<D>::Zero());
   TensorStencils<D, Basis> stencils;
   stencils.evaluate(sim.grid, sim.particles);
-  ScatterWorkspace<D> ws;
-  scatter_to_grid<kScatterMass | kScatterMomentum>(sim.grid, stencils, sim.particles, Vec<D>(Vec<D>::Zero()), sim.fields, ws);
+  scatter_to_grid<kScatterMass | kScatterMomentum>(sim.grid, stencils, sim.particles, Vec<D>(Vec<D>::Zero()),
+                                                   sim.fields);
   double particle_mass = 0, grid_mass = 0;
   Vec<D> particle_momentum = Vec<D>::Zero(), grid_momentum = Vec<D>::Zero();
   for (std::size_t p = 0; p < sim.particles.size(); ++p) {
@@ -73,7 +76,8 @@ TEST(Transfer, ScatterAndPicGatherConserveMassAndMomentum) {
   check_conservation<3, QuadraticBSplineBasis>();
 }
 
-template <int D, class Basis> void check_rigid_translation(UpdateScheme scheme) {
+template <int D, class Basis>
+void check_rigid_translation(UpdateScheme scheme) {
   Vec<D> drift = Vec<D>::Zero();
   drift[0] = 0.3;
   drift[D - 1] += -0.2;

@@ -126,7 +126,7 @@ class ExplicitStepper {
     if constexpr ((What & kScatterForce) != 0)
       if (s_.body_force) body = &evaluate_body_force();
     if (s_.solver.mapping == Mapping::MPM)
-      scatter_to_grid<What>(grid_, stencils_, s_.particles, s_.gravity, s_.fields, workspace_,
+      scatter_to_grid<What>(grid_, stencils_, s_.particles, s_.gravity, s_.fields,
                             static_cast<const std::vector<Vec<D>>*>(nullptr), body);
     else
       scatter_mls<What>(body);
@@ -153,7 +153,7 @@ class ExplicitStepper {
         mls_.template cell_quadrature<(What & kScatterMass) != 0, (What & kScatterForce) != 0>(
             s_.grid, s_.particles, s_.gravity, body, s_.fields);
       else
-        scatter_to_grid<kMassForce>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields, workspace_,
+        scatter_to_grid<kMassForce>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields,
                                     static_cast<const std::vector<Vec<D>>*>(nullptr), body);
     }
     if constexpr ((What & kScatterMomentum) != 0) {
@@ -258,7 +258,7 @@ class ExplicitStepper {
     if constexpr (kFields) contact_after_update(dt, t_new, impulse, work);
     if (fmpm_now_) {
       fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new,
-                s_.fields.velocity_new, workspace_, &impulse, &work);
+                s_.fields.velocity_new, &impulse, &work);
       if constexpr (kFields) add_friction_work(s_.fields.velocity_new);
     } else if (s_.solver.transfer == VelocityTransfer::XPIC) {
       // The series on the old lumped velocities (§1.5). Its increments are zeroed on the condition
@@ -269,7 +269,7 @@ class ExplicitStepper {
       auto& vx = s_.fields.velocity_xpic;
       vx = s_.fields.velocity;
       fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t_new, vx,
-                workspace_, &impulse, &work);
+                &impulse, &work);
       for (std::size_t i = 0; i < vx.size(); ++i) vx[i] += s_.fields.acceleration[i] * dt;
     }
     s_.external_impulse += impulse + total_mass_ * s_.gravity * dt;
@@ -281,8 +281,9 @@ class ExplicitStepper {
                                 s_.mass_floor};
     if (transfer.kind == VelocityTransfer::FMPM && !fmpm_now_)
       transfer.kind = VelocityTransfer::FLIP;  // periodic
-    constexpr bool kTrackedDomains =
-        requires { stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt, DomainMotion<D>{}); };
+    constexpr bool kTrackedDomains = requires {
+      stencils_.move_domains(s_.grid, s_.fields, s_.particles, dt, DomainMotion<D>{});
+    };
     if constexpr (kTrackedDomains) old_velocity_ = s_.particles.v;
     const auto result =
         gather_and_move(grid_, stencils_, s_.fields, s_.particles, transfer, dt, with_gradient, s_.gravity);
@@ -312,8 +313,7 @@ class ExplicitStepper {
     lumped_velocity(s_.fields, s_.mass_floor, velocity_);
     s_.conditions.apply(velocity_, t);
     if (fmpm_now_)
-      fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t, velocity_,
-                workspace_);
+      fmpm_.run(grid_, stencils_, s_.particles, s_.fields.mass, s_.mass_floor, s_.conditions, t, velocity_);
     gather_velocity_gradient(grid_, stencils_, velocity_, s_.particles, s_.fields.mass, s_.mass_floor);
     update_strain(dt);
   }
@@ -381,9 +381,8 @@ class ExplicitStepper {
 
   Simulation<D>& s_;
   Stencils stencils_;
-  Grid<D> grid_;  // s_.grid, with node_count over every field of a contact run
-  ScatterWorkspace<D> workspace_;
-  std::vector<Vec<D>> velocity_;  // scratch node velocities for USF / MUSL
+  Grid<D> grid_;                      // s_.grid, with node_count over every field of a contact run
+  std::vector<Vec<D>> velocity_;      // scratch node velocities for USF / MUSL
   std::vector<Vec<D>> old_velocity_;  // CPDI2: V^n of every particle, for its corners' motion
   std::vector<Vec<D>> step_start_x_;  // MLS mapping: positions of the start of the step
   FmpmLoop<D> fmpm_;

@@ -32,6 +32,10 @@ struct FieldStencils {
       offset[p] = field_of[by_material ? particles.material[p] : particles.body[p]] * field_nodes;
   }
 
+  /// The base stencils' particle order: the fields are separate node ranges, so two particles of
+  /// different fields never share a node and the single-grid colouring serves every field.
+  [[nodiscard]] const auto& brick_order() const { return base.bricks; }
+
   [[nodiscard]] int field(std::size_t p) const { return static_cast<int>(offset[p] / field_nodes); }
 
   [[nodiscard]] std::pair<Index, Index> node_span(const Grid<D>& grid, std::size_t p) const {

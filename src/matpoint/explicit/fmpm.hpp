@@ -51,8 +51,6 @@ class FmpmLoop {
   static constexpr bool kScalar = std::is_same_v<Value, double>;
 
  public:
-  using Workspace = std::conditional_t<kScalar, ScalarScatterWorkspace, ScatterWorkspace<D>>;
-
   explicit FmpmLoop(const FmpmSpec& spec = {}, double measure_floor = 0.0)
       : spec_(spec), measure_floor_(measure_floor) {}
 
@@ -64,15 +62,15 @@ class FmpmLoop {
   template <class Stencils, class Conditions>
   int run(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
           const std::vector<double>& mass, double mass_floor, const Conditions& conditions, double t,
-          std::vector<Value>& v, Workspace& ws, Value* impulse = nullptr, double* work = nullptr) {
+          std::vector<Value>& v, Value* impulse = nullptr, double* work = nullptr) {
     const int k = spec_.order;
     statistics_.loops += 1;
     if (k <= 1) return 1;
     const auto start = std::chrono::steady_clock::now();
-    const int order = spec_.recursion == FmpmRecursion::Binomial
-                          ? run_binomial(grid, stencils, particles, mass, mass_floor, v, ws)
-                          : run_incremental(grid, stencils, particles, mass, mass_floor, conditions, t, v, ws,
-                                            impulse, work);
+    const int order =
+        spec_.recursion == FmpmRecursion::Binomial
+            ? run_binomial(grid, stencils, particles, mass, mass_floor, v)
+            : run_incremental(grid, stencils, particles, mass, mass_floor, conditions, t, v, impulse, work);
     if (spec_.boundary_method == FmpmBoundaryMethod::Combined || spec_.recursion == FmpmRecursion::Binomial) {
       double ignored_work = 0.0;  // Nairn 2026 §3.1 "combined": overwrite v+(k) on the condition nodes
       conditions.apply(v, t, impulse ? &mass : nullptr, impulse, work ? work : &ignored_work);
@@ -86,7 +84,7 @@ class FmpmLoop {
   template <class Stencils>
   void apply_projection(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
                         const std::vector<double>& mass, double mass_floor, const std::vector<Value>& prev,
-                        std::vector<Value>& next, Workspace& ws) {
+                        std::vector<Value>& next) {
     const auto n = static_cast<std::ptrdiff_t>(particles.size());
     gathered_.resize(particles.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
@@ -95,7 +93,7 @@ class FmpmLoop {
       stencils.for_each_node(grid, p, [&](Index node, double N, const Vec<D>&) { u += N * prev[node]; });
       gathered_[p] = u;
     }
-    const std::vector<Value>& weighted = scatter_weighted(grid, stencils, particles, ws);  // w_p S_pi U_p
+    const std::vector<Value>& weighted = scatter_weighted(grid, stencils, particles);  // w_p S_pi U_p
     const auto nodes = static_cast<std::ptrdiff_t>(mass.size());
     next.resize(mass.size());
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
@@ -127,16 +125,16 @@ class FmpmLoop {
   /// sum_p w_p S_pi U_p: the masses M_p (mechanics, through scatter_to_grid) or the weights.
   template <class Stencils>
   const std::vector<Value>& scatter_weighted(const Grid<D>& grid, const Stencils& stencils,
-                                             const ParticleSet<D>& particles, Workspace& ws) {
+                                             const ParticleSet<D>& particles) {
     if constexpr (kScalar) {
       const std::vector<double>& w = *weights_;
-      scatter_scalar(grid, stencils, particles.size(), scratch_, ws,
+      scatter_scalar(grid, stencils, scratch_,
                      [&](std::ptrdiff_t p, double N, const Vec<D>&) { return w[p] * N * gathered_[p]; });
       return scratch_;
     } else {
       if (scratch_.momentum.size() != static_cast<std::size_t>(grid.node_count))
         scratch_.momentum.assign(grid.node_count, Vec<D>::Zero());
-      scatter_to_grid<kScatterMomentum>(grid, stencils, particles, Vec<D>(Vec<D>::Zero()), scratch_, ws,
+      scatter_to_grid<kScatterMomentum>(grid, stencils, particles, Vec<D>(Vec<D>::Zero()), scratch_,
                                         &gathered_);
       return scratch_.momentum;
     }
@@ -146,11 +144,11 @@ class FmpmLoop {
   template <class Stencils, class Conditions>
   int run_incremental(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
                       const std::vector<double>& mass, double mass_floor, const Conditions& conditions,
-                      double t, std::vector<Value>& v, Workspace& ws, Value* impulse, double* work) {
+                      double t, std::vector<Value>& v, Value* impulse, double* work) {
     prev_ = v;  // dv(1) = v+(1); v holds the running sum v* = v+(l)
     const auto nodes = static_cast<std::ptrdiff_t>(v.size());
     for (int l = 2; l <= spec_.order; ++l) {
-      apply_projection(grid, stencils, particles, mass, mass_floor, prev_, next_, ws);
+      apply_projection(grid, stencils, particles, mass, mass_floor, prev_, next_);
       const double scale = blend_scale(l);
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) prev_[i] = scale * (prev_[i] - next_[i]);  // A dv(l-1)
@@ -159,7 +157,8 @@ class FmpmLoop {
       if (correction_) correction_(prev_);                            // (2) contact (Net or Evolving)
 #pragma omp parallel for schedule(static) if (nodes > kParallelMinimum)
       for (std::ptrdiff_t i = 0; i < nodes; ++i) v[i] += prev_[i];
-      if (spec_.measure != FmpmMeasure::None && measure(mass, std::max(mass_floor, measure_floor_), v) < spec_.limit)
+      if (spec_.measure != FmpmMeasure::None &&
+          measure(mass, std::max(mass_floor, measure_floor_), v) < spec_.limit)
         return l;  // (3)
     }
     return spec_.order;
@@ -169,7 +168,7 @@ class FmpmLoop {
   /// v+(k) = sum_l (-1)^{l+1} v*_l. Kept to verify eq. (6); no per-increment corrections.
   template <class Stencils>
   int run_binomial(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
-                   const std::vector<double>& mass, double mass_floor, std::vector<Value>& v, Workspace& ws) {
+                   const std::vector<double>& mass, double mass_floor, std::vector<Value>& v) {
     const int k = spec_.order;
     const auto nodes = static_cast<std::ptrdiff_t>(v.size());
     prev_.resize(v.size());
@@ -177,7 +176,7 @@ class FmpmLoop {
     std::vector<Value>& sum = v;
     for (std::ptrdiff_t i = 0; i < nodes; ++i) sum[i] = prev_[i];
     for (int l = 2; l <= k; ++l) {
-      apply_projection(grid, stencils, particles, mass, mass_floor, prev_, next_, ws);
+      apply_projection(grid, stencils, particles, mass, mass_floor, prev_, next_);
       const double factor = static_cast<double>(k + 1 - l) / l;
       const double sign = l % 2 == 0 ? -1.0 : 1.0;
       for (std::ptrdiff_t i = 0; i < nodes; ++i) {

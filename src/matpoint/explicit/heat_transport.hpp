@@ -88,9 +88,9 @@ class HeatTransport {
     const std::size_t n = ps.size();
     weight_.resize(n);
     for (std::size_t p = 0; p < n; ++p) weight_[p] = ps.mass[p] * sim.heat_capacity[ps.material[p]];
-    scatter_scalar(grid, stencils, n, capacity_, ws_,
+    scatter_scalar(grid, stencils, capacity_,
                    [&](std::ptrdiff_t p, double N, const Vec<D>&) { return weight_[p] * N; });
-    scatter_scalar(grid, stencils, n, temperature_, ws_, [&](std::ptrdiff_t p, double N, const Vec<D>&) {
+    scatter_scalar(grid, stencils, temperature_, [&](std::ptrdiff_t p, double N, const Vec<D>&) {
       return weight_[p] * N * ps.temperature[p];
     });
     const auto nodes = static_cast<std::ptrdiff_t>(capacity_.size());
@@ -141,7 +141,7 @@ class HeatTransport {
           grid, p, [&](Index node, double, const Vec<D>& dN) { gradient += temperature_[node] * dN; });
       flux_[p] = -sim.conductivity[ps.material[p]] * ps.volume(p) * gradient;  // V_p q_p
     }
-    scatter_scalar(grid, stencils, ps.size(), flow_, ws_,
+    scatter_scalar(grid, stencils, flow_,
                    [&](std::ptrdiff_t p, double, const Vec<D>& dN) { return flux_[p].dot(dN); });
   }
 
@@ -157,7 +157,7 @@ class HeatTransport {
         fmpm_.set_increment_correction([this](std::vector<double>& dT) { contact_.mix(dT, capacity_); });
       else
         fmpm_.set_increment_correction(nullptr);
-      fmpm_.run(grid, stencils, ps, capacity_, floor_, conditions_, t_new, updated_, ws_, &boundary_heat);
+      fmpm_.run(grid, stencils, ps, capacity_, floor_, conditions_, t_new, updated_, &boundary_heat);
     } else {
       for (std::size_t i = 0; i < updated_.size(); ++i) updated_[i] -= start_[i];
     }
@@ -177,7 +177,6 @@ class HeatTransport {
   FmpmLoop<D, double> fmpm_;
   ThermalContactCoupling<D> contact_;  // insulated unless contact fields conduct
   int fields_ = 1;
-  ScalarScatterWorkspace ws_;
   double floor_ = 0.0;               // nodes at or below this capacity are inactive
   std::vector<double> weight_;       // w_p = M_p C_V,p
   std::vector<double> capacity_;     // c_i

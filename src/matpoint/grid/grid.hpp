@@ -67,13 +67,22 @@ struct Grid {
     }
     return true;
   }
+  /// Integer coordinates of the cell containing x (a point outside is put in the nearest cell).
+  [[nodiscard]] std::array<int, D> cell_coords(const Vec<D>& x) const {
+    std::array<int, D> c{};
+    for (int a = 0; a < D; ++a) c[a] = cell_coordinate(x[a], a);
+    return c;
+  }
+  /// Cell coordinate along axis a of the coordinate x_a (clamped to 0 .. cells - 1).
+  [[nodiscard]] int cell_coordinate(double x_a, int a) const {
+    const int i = floor_to_int((x_a - origin[a]) / h[a]);
+    return i < 0 ? 0 : (i >= cells[a] ? cells[a] - 1 : i);
+  }
   /// Flat index of the cell containing x (x inside the domain).
   [[nodiscard]] Index cell_index(const Vec<D>& x) const {
     Index c = 0, s = 1;
     for (int a = 0; a < D; ++a) {
-      int i = floor_to_int((x[a] - origin[a]) / h[a]);
-      i = i < 0 ? 0 : (i >= cells[a] ? cells[a] - 1 : i);
-      c += i * s;
+      c += cell_coordinate(x[a], a) * s;
       s *= cells[a];
     }
     return c;

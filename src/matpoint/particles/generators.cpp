@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/mesh/triangle_pattern.hpp"
 #include "matpoint/particles/graded_generators.hpp"
 
@@ -159,8 +160,8 @@ void add_lattice_points(const BodySpec& body, int body_index, const MaterialSpec
   // Gauss-Legendre on [0, 1]: 2 points (1 -+ 1/sqrt(3)) / 2 with weights 1/2; 3 points
   // (1 - sqrt(3/5)) / 2, 1/2, (1 + sqrt(3/5)) / 2 with weights 5/18, 8/18, 5/18.
   const double g2 = 0.5 / std::sqrt(3.0), g3 = 0.5 * std::sqrt(0.6);
-  const std::array<double, 3> gauss_abscissa =
-      ppc == 3 ? std::array<double, 3>{0.5 - g3, 0.5, 0.5 + g3} : std::array<double, 3>{0.5 - g2, 0.5 + g2, 0.0};
+  const std::array<double, 3> gauss_abscissa = ppc == 3 ? std::array<double, 3>{0.5 - g3, 0.5, 0.5 + g3}
+                                                        : std::array<double, 3>{0.5 - g2, 0.5 + g2, 0.0};
   const std::array<double, 3> gauss_weight =
       ppc == 3 ? std::array<double, 3>{5.0 / 18, 8.0 / 18, 5.0 / 18} : std::array<double, 3>{0.5, 0.5, 0.0};
   // The offset of sub-cell s in its cell: the sub-cell centre (s + 1/2) h / ppc, or the Gauss point.
@@ -232,12 +233,12 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
 template <int D>
 void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
   const std::size_t n = particles.size();
-  Index cell_count = 1;
-  for (int a = 0; a < D; ++a) cell_count *= grid.cells[a];
+  // Cells in brick-major order: the particles of a brick of the scatter's schedule lie together.
+  const Index cell_count = BrickSchedule<D>::brick_major_cell_count(grid);
   std::vector<Index> cell(n);
   bool sorted = true;
   for (std::size_t p = 0; p < n; ++p) {
-    cell[p] = grid.cell_index(particles.x[p]);
+    cell[p] = BrickSchedule<D>::brick_major_cell(grid, grid.cell_coords(particles.x[p]));
     if (p > 0 && cell[p] < cell[p - 1]) sorted = false;
   }
   if (sorted) return;

@@ -10,13 +10,16 @@ namespace matpoint {
 
 /// Adds the particles of one body; returns how many were added.
 template <int D>
-std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material, const Grid<D>& grid,
-                          ParticleSet<D>& particles);
+std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material,
+                          const Grid<D>& grid, ParticleSet<D>& particles);
 
 /// True when x lies inside the body's shape (boundary included).
-template <int D> bool shape_contains(const BodySpec& body, const Vec<D>& x);
+template <int D>
+bool shape_contains(const BodySpec& body, const Vec<D>& x);
 
-/// Stable counting sort of all particle arrays by the flat index of the cell that holds them.
-template <int D> void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles);
+/// Stable counting sort of all particle arrays by the cell that holds them, cells in brick-major order
+/// (BrickSchedule::brick_major_cell): the particles of one brick of the scatter lie together.
+template <int D>
+void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles);
 
 }  // namespace matpoint

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "matpoint/core/types.hpp"
+#include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/grid_fields.hpp"
 #include "matpoint/particles/particle_set.hpp"
@@ -138,6 +139,7 @@ struct CpdiStencils {
   std::vector<std::array<int, D>> size;  // box size in nodes per direction
   std::vector<double> weight;
   std::vector<Vec<D>> gradient;
+  BrickSchedule<D> bricks;  // the particle order of the particle-to-grid sums
   /// After evaluate(): the lowest storage index of a particle with a domain corner more than one
   /// cell outside the grid (or not finite), -1 if none. The folded basis still gives finite weights
   /// there, but the domain has outgrown the grid: the stepper stops with a numerical failure.
@@ -160,7 +162,12 @@ struct CpdiStencils {
     // node is monotone in the corner coordinate).
     const Vec<D> low = grid.origin - grid.h, high = grid.domain_max() + grid.h;
     long outside = std::numeric_limits<long>::max();
-#pragma omp parallel for schedule(static) reduction(min : outside) if (n > kParallelMinimum)
+    int below = 0, above = 0;  // farthest box node below / above a particle's cell, in nodes
+    bricks.reset(grid, particles.size());
+#pragma omp parallel for schedule(static) reduction(min        \
+                                                    : outside) \
+    reduction(max                                              \
+              : below, above) if (n > kParallelMinimum)
     for (std::ptrdiff_t p = 0; p < n; ++p) {
       const Corners X = corners(particles, p);
       std::array<int, D> lo;
@@ -180,7 +187,14 @@ struct CpdiStencils {
       }
       lowest[p] = grid.node_index(lo);
       offset[p + 1] = count;
+      const auto cell = grid.cell_coords(particles.x[p]);
+      for (int a = 0; a < D; ++a) {
+        below = std::max(below, cell[a] - lo[a]);
+        above = std::max(above, lo[a] + size[p][a] - 1 - cell[a]);
+      }
+      bricks.assign(p, cell);
     }
+    bricks.finish(below, above);
     first_corner_outside = outside == std::numeric_limits<long>::max() ? -1 : outside;
     for (std::ptrdiff_t p = 0; p < n; ++p) offset[p + 1] += offset[p];
     weight.resize(offset[n]);  // fill() writes every entry of its particle
@@ -189,6 +203,8 @@ struct CpdiStencils {
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
     for (std::ptrdiff_t p = 0; p < n; ++p) fill(grid, particles, p);
   }
+
+  [[nodiscard]] const BrickSchedule<D>& brick_order() const { return bricks; }
 
   [[nodiscard]] std::pair<Index, Index> node_span(const Grid<D>& grid, std::size_t p) const {
     Index last = lowest[p];
@@ -229,8 +245,8 @@ struct CpdiStencils {
     for (std::ptrdiff_t p = 0; p < n; ++p) {
       // The part of the particle's displacement that is the same for every corner (eq. (7)-(9))
       const Vec<D>& v_old = (*motion.old_velocity)[p];
-      const Vec<D> uniform = motion.xpic ? Vec<D>(0.5 * (particles.v[p] - v_old))
-                                         : Vec<D>((1.0 - flip) * (1.0 - alpha) * v_old);
+      const Vec<D> uniform =
+          motion.xpic ? Vec<D>(0.5 * (particles.v[p] - v_old)) : Vec<D>((1.0 - flip) * (1.0 - alpha) * v_old);
       auto& X = particles.corners[p];
       for (int c = 0; c < C; ++c) {
         std::array<int, D> i0;

@@ -4,16 +4,17 @@
 // gradients are formed on the fly, which costs a few multiplications and saves memory traffic.
 #pragma once
 
-#include "matpoint/core/types.hpp"
-#include "matpoint/grid/grid.hpp"
-#include "matpoint/particles/particle_set.hpp"
-#include "matpoint/shape/tensor_bases.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
 #include <vector>
+
+#include "matpoint/core/types.hpp"
+#include "matpoint/grid/brick_schedule.hpp"
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/particles/particle_set.hpp"
+#include "matpoint/shape/tensor_bases.hpp"
 
 namespace matpoint {
 
@@ -32,15 +33,19 @@ double gimp_half_width(const Grid<D>& grid, const ParticleSet<D>& particles, std
   return std::clamp(l, Basis::min_half_width, 0.5);
 }
 
-template <int D, class Basis> struct TensorStencils {
+template <int D, class Basis>
+struct TensorStencils {
   static constexpr int W = Basis::width;
   static constexpr int nodes_per_particle = D == 1 ? W : (D == 2 ? W * W : W * W * W);
 
-  std::vector<Index> base;                       // flat index of the lowest node
+  std::vector<Index> base;                        // flat index of the lowest node
   std::vector<std::array<double, D * W>> weight;  // phi of each direction, [a * W + k]
   std::vector<std::array<double, D * W>> slope;   // d phi / dx of each direction
+  BrickSchedule<D> bricks;                        // the particle order of the particle-to-grid sums
 
   void evaluate(const Grid<D>& grid, const ParticleSet<D>& particles);
+
+  [[nodiscard]] const BrickSchedule<D>& brick_order() const { return bricks; }
 
   /// Largest flat-index distance from base[p] to any node of the stencil.
   [[nodiscard]] static Index max_node_offset(const Grid<D>& grid) {
@@ -55,7 +60,8 @@ template <int D, class Basis> struct TensorStencils {
   }
 
   /// Calls fn(node, N, gradN) for every node in particle p's support.
-  template <class Fn> void for_each_node(const Grid<D>& grid, std::size_t p, Fn&& fn) const {
+  template <class Fn>
+  void for_each_node(const Grid<D>& grid, std::size_t p, Fn&& fn) const {
     const auto& w = weight[p];
     const auto& s = slope[p];
     const Index b = base[p];
@@ -85,9 +91,11 @@ void TensorStencils<D, Basis>::evaluate(const Grid<D>& grid, const ParticleSet<D
   base.resize(n);
   weight.resize(n);
   slope.resize(n);
-#pragma omp parallel for schedule(static) if (n > kParallelMinimum)
+  bricks.reset(grid, particles.size());
+  int below = 0, above = 0;  // farthest stencil node below / above a particle's cell, in nodes
+#pragma omp parallel for schedule(static) reduction(max : below, above) if (n > kParallelMinimum)
   for (std::ptrdiff_t p = 0; p < n; ++p) {
-    std::array<int, D> lowest{};
+    std::array<int, D> lowest{}, cell{};
     for (int a = 0; a < D; ++a) {
       const double xi = (particles.x[p][a] - grid.origin[a]) / grid.h[a];
       if constexpr (Basis::domain == DomainWidth::None)
@@ -97,9 +105,14 @@ void TensorStencils<D, Basis>::evaluate(const Grid<D>& grid, const ParticleSet<D
                                     &weight[p][a * W], &slope[p][a * W]);
       const double inv_h = 1.0 / grid.h[a];
       for (int k = 0; k < W; ++k) slope[p][a * W + k] *= inv_h;
+      cell[a] = std::clamp(floor_to_int(xi), 0, grid.cells[a] - 1);  // as Grid::cell_coordinate
+      below = std::max(below, cell[a] - lowest[a]);
+      above = std::max(above, lowest[a] + W - 1 - cell[a]);
     }
     base[p] = grid.node_index(lowest);
+    bricks.assign(p, cell);
   }
+  bricks.finish(below, above);
 }
 
 }  // namespace matpoint

@@ -1,0 +1,175 @@
+// The order in which particle-to-grid sums visit the particles: by bricks of B^D cells in a fixed
+// colouring, so that a nodal sum is the same for any number of threads (docs/scale-out.md §6).
+//
+// Each particle belongs to the brick that holds its cell. Bricks are coloured by the parity of
+// their coordinates (m colours per axis, m^D in all, m = 2 unless a stencil reaches farther than a
+// brick); two bricks of one colour are (m - 1) B cells apart, so their particles' stencils never
+// share a node and the bricks of one colour can be scattered by
+// different threads straight into the grid, without atomics or private copies. The colours run
+// one after the other. A node therefore receives its contributions in one fixed order — colour by
+// colour; within a colour from its single brick, in the brick's particle order (storage order) —
+// whatever the thread count, and the sums are bitwise equal on 1, 2 or 16 threads.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "matpoint/core/types.hpp"
+#include "matpoint/grid/grid.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace matpoint {
+
+template <int D>
+class BrickSchedule {
+ public:
+  /// Cells per brick edge (a power of two): bricks of 16 x 16 cells in 2-D, 8 x 8 x 8 in 3-D hold
+  /// about a thousand to two thousand particles, enough work per brick for a thread.
+  static constexpr int kBrickShift = D == 3 ? 3 : 4;
+  static constexpr int kBrickCells = 1 << kBrickShift;
+
+  /// Sizes the schedule for n particles on the grid's cells (before assign()).
+  void reset(const Grid<D>& grid, std::size_t n) {
+    Index count = 1;
+    for (int a = 0; a < D; ++a) {
+      bricks_[a] = (grid.cells[a] + kBrickCells - 1) >> kBrickShift;
+      brick_stride_[a] = count;
+      count *= bricks_[a];
+    }
+    brick_count_ = count;
+    brick_of_.resize(n);
+  }
+
+  /// Particle p lies in the cell of coordinates `cell` (0 .. cells - 1 per axis). Safe to call for
+  /// different p from several threads.
+  void assign(std::size_t p, const std::array<int, D>& cell) {
+    Index b = 0;
+    for (int a = 0; a < D; ++a) b += static_cast<Index>(cell[a] >> kBrickShift) * brick_stride_[a];
+    brick_of_[p] = static_cast<std::int32_t>(b);
+  }
+
+  /// Groups the particles by brick (stable: storage order within a brick) and the bricks by
+  /// colour. A particle's stencil reaches at most `below` nodes below its cell's lowest node and
+  /// `above` nodes above it, along any axis (1 and 2 for the quadratic B-spline).
+  void finish(int below, int above) {
+    const int reach = below + above;  // bricks m apart: (m - 1) B >= below + above keeps them apart
+    colours_per_axis_ = 2 + std::max(0, (reach - 1) / kBrickCells);
+    const auto n = static_cast<std::int32_t>(brick_of_.size());
+    // A stable counting sort by brick. sort_by_cell keeps the storage brick-major, so the bricks
+    // come in runs: each run is counted and placed at once (a counter per particle would be a
+    // chain of dependent increments on one memory word).
+    start_.assign(static_cast<std::size_t>(brick_count_) + 1, 0);
+    for_each_run([&](std::int32_t b, std::int32_t begin, std::int32_t end) { start_[b + 1] += end - begin; });
+    for (Index b = 0; b < brick_count_; ++b) start_[b + 1] += start_[b];
+    order_.resize(static_cast<std::size_t>(n));
+    fill_.assign(start_.begin(), start_.end() - 1);
+    for_each_run([&](std::int32_t b, std::int32_t begin, std::int32_t end) {
+      std::int32_t* out = order_.data() + fill_[b];
+      for (std::int32_t p = begin; p < end; ++p) *out++ = p;
+      fill_[b] += end - begin;
+    });
+    group_by_colour();
+  }
+
+  [[nodiscard]] Index brick_of(std::size_t p) const { return brick_of_[p]; }
+  /// Colour of brick b: its coordinates modulo m per axis, read as a base-m number.
+  [[nodiscard]] int colour_of(Index b) const {
+    int colour = 0, weight = 1;
+    for (int a = 0; a < D; ++a) {
+      colour += static_cast<int>((b / brick_stride_[a]) % bricks_[a] % colours_per_axis_) * weight;
+      weight *= colours_per_axis_;
+    }
+    return colour;
+  }
+  /// The cells in brick-major order (bricks in x-fastest order, cells x-fastest inside a brick):
+  /// the key by which sort_by_cell stores the particles, so that a brick's particles lie together.
+  [[nodiscard]] static Index brick_major_cell(const Grid<D>& grid, const std::array<int, D>& cell) {
+    Index brick = 0, brick_stride = 1, local = 0, local_stride = 1;
+    for (int a = 0; a < D; ++a) {
+      brick += static_cast<Index>(cell[a] >> kBrickShift) * brick_stride;
+      brick_stride *= (grid.cells[a] + kBrickCells - 1) >> kBrickShift;
+      local += static_cast<Index>(cell[a] & (kBrickCells - 1)) * local_stride;
+      local_stride *= kBrickCells;
+    }
+    return brick * local_stride + local;
+  }
+  /// One more than the largest brick_major_cell of the grid.
+  [[nodiscard]] static Index brick_major_cell_count(const Grid<D>& grid) {
+    Index count = 1;
+    for (int a = 0; a < D; ++a)
+      count *= static_cast<Index>((grid.cells[a] + kBrickCells - 1) >> kBrickShift) << kBrickShift;
+    return count;
+  }
+
+  [[nodiscard]] int colours() const { return static_cast<int>(colour_start_.size()) - 1; }
+  [[nodiscard]] int colours_per_axis() const { return colours_per_axis_; }
+  [[nodiscard]] std::size_t particle_count() const { return order_.size(); }
+
+  /// Calls visit(p) for every particle, brick by brick, colour after colour; the bricks of one
+  /// colour are shared among the threads (fewer than kParallelMinimum particles: one thread).
+  /// visit may add into any node of p's stencil without synchronisation.
+  template <class Visit>
+  void for_each_particle(Visit&& visit) const {
+    const bool threaded = static_cast<std::ptrdiff_t>(order_.size()) > kParallelMinimum;
+#pragma omp parallel if (threaded)
+    for (int c = 0; c < colours(); ++c) {
+#pragma omp for schedule(dynamic, 1)
+      for (std::ptrdiff_t k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
+        const Index b = coloured_[k];
+        for (Index q = start_[b]; q < start_[b + 1]; ++q) visit(static_cast<std::size_t>(order_[q]));
+      }
+    }
+  }
+
+ private:
+  /// Calls fn(brick, begin, end) for each maximal run of consecutive particles in one brick.
+  template <class Fn>
+  void for_each_run(Fn&& fn) const {
+    const auto n = static_cast<std::int32_t>(brick_of_.size());
+    for (std::int32_t begin = 0; begin < n;) {
+      const std::int32_t b = brick_of_[begin];
+      std::int32_t end = begin + 1;
+      while (end < n && brick_of_[end] == b) ++end;
+      fn(b, begin, end);
+      begin = end;
+    }
+  }
+
+  void group_by_colour() {
+    const int m = colours_per_axis_;
+    int colour_count = 1;
+    for (int a = 0; a < D; ++a) colour_count *= m;
+    auto& colour_of = colour_of_;  // -1: an empty brick
+    colour_of.resize(static_cast<std::size_t>(brick_count_));
+    colour_start_.assign(static_cast<std::size_t>(colour_count) + 1, 0);
+    for (Index b = 0; b < brick_count_; ++b) {
+      if (start_[b] == start_[b + 1]) {
+        colour_of[b] = -1;
+        continue;
+      }
+      colour_of[b] = this->colour_of(b);
+      ++colour_start_[colour_of[b] + 1];
+    }
+    for (int c = 0; c < colour_count; ++c) colour_start_[c + 1] += colour_start_[c];
+    coloured_.resize(static_cast<std::size_t>(colour_start_[colour_count]));
+    next_.assign(colour_start_.begin(), colour_start_.end() - 1);
+    for (Index b = 0; b < brick_count_; ++b)
+      if (colour_of[b] >= 0) coloured_[next_[colour_of[b]]++] = b;
+  }
+
+  std::array<Index, D> bricks_{}, brick_stride_{};
+  Index brick_count_ = 0;
+  int colours_per_axis_ = 2;
+  std::vector<std::int32_t> brick_of_;        // by particle storage index
+  std::vector<Index> start_, fill_;           // particles of brick b: order_[start_[b] .. start_[b + 1])
+  std::vector<std::int32_t> order_;           // particle storage indices grouped by brick
+  std::vector<std::ptrdiff_t> colour_start_;  // bricks of colour c: coloured_[colour_start_[c] ..]
+  std::vector<Index> coloured_;               // non-empty bricks, by colour, ascending within one
+};
+
+}  // namespace matpoint
