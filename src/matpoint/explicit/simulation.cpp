@@ -101,6 +101,7 @@ void set_up_heat(const Spec& spec, Simulation<D>& sim) {
       sim.max_diffusivity = std::max(sim.max_diffusivity, m.conductivity / (m.density * m.heat_capacity));
   }
   auto& ps = sim.particles;
+  ps.has_temperature = true;
   ps.temperature.assign(ps.size(), h.initial_temperature);
   for (const auto& [body, T] : h.body_temperatures)
     for (std::size_t p = 0; p < ps.size(); ++p)
