@@ -146,8 +146,8 @@ Simulation<D> build_simulation(const Spec& spec) {
   if (auto overlaps = overlapping_bodies<D>(spec, sim.particles, h); !overlaps.empty())
     throw InputError(std::move(overlaps));
   set_geostatic_stress<D>(sim.materials, spec.bodies, spec.loads.gravity, sim.particles);
-  sim.initial_velocity = sim.particles.v;  // generation order = id order
-  sim.initial_position = sim.particles.x;
+  sim.particles.x0 = sim.particles.x;  // X_p and V_p(0): as generated, velocity noise included
+  sim.particles.v0 = sim.particles.v;
   sort_by_cell(sim.grid, sim.particles);
   update_stress<D>(sim.materials, sim.particles);
 
