@@ -70,6 +70,8 @@ TEST(ParticleArrays, BytesPerParticleOfTheDesign) {
 }
 
 // --- sort_by_cell: 24 particles in a 4 x 3 grid of unit cells, two per cell ---
+// The expected order is the cells' row-major order (x fastest); a brick-major cell order with
+// bricks of at least 4 x 3 cells (one brick here) is the same order.
 
 constexpr int kCellsX = 4, kCells = 12, kParticles = 24;
 
