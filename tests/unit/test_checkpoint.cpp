@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <set>
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/interrupt.hpp"
@@ -71,7 +72,8 @@ void fill(Simulation<D>& sim) {
   for (double& s : ps.state) s = next();
   sim.time = 0.0123456789, sim.step = 1234567, sim.external_work = next();
   for (int a = 0; a < D; ++a) sim.external_impulse[a] = next();
-  for (auto& x : sim.initial_velocity) x = Vec<D>::Constant(next());
+  for (auto& x : ps.v0) x = Vec<D>::Constant(next());  // V_p(0), X_p: by storage index
+  for (auto& x : ps.x0) x = Vec<D>::Constant(next());
   for (int a = 0; a < D; ++a) sim.grid_momentum_difference[a] = next();
 }
 
@@ -142,8 +144,20 @@ void round_trip(const std::string& shape, const std::string& transfer) {
   EXPECT_EQ(read.external_work, written.external_work);
   EXPECT_EQ(read.external_impulse, written.external_impulse);
   EXPECT_EQ(read.grid_momentum_difference, written.grid_momentum_difference);
-  EXPECT_TRUE(same(read.initial_velocity, written.initial_velocity) &&
-              same(read.initial_position, written.initial_position));
+  EXPECT_TRUE(same(a.v0, b.v0) && same(a.x0, b.x0)) << "initial velocity and position";
+  {  // the file keeps X_p and V_p(0) by particle id (docs/output.md), whatever the storage order
+    const Hdf5Reader file(dir / kCheckpointFile);
+    const hsize_t n = a.size();
+    const auto X = file.doubles("simulation/initial_position", {n, D});
+    const auto V = file.doubles("simulation/initial_velocity", {n, D});
+    bool by_id = true;
+    for (std::size_t p = 0; p < a.size(); ++p)
+      for (int c = 0; c < D; ++c) {
+        const auto k = static_cast<std::size_t>(a.id[p]) * D + c;
+        by_id = by_id && X[k] == a.x0[p][c] && V[k] == a.v0[p][c];
+      }
+    EXPECT_TRUE(by_id) << "simulation/initial_position and initial_velocity by id";
+  }
   EXPECT_EQ(r.dt, run.dt);
   EXPECT_EQ(r.momentum_scale, run.momentum_scale);
   EXPECT_EQ(r.total_mass, run.total_mass);
@@ -193,6 +207,70 @@ TEST(Checkpoint, RoundTripKeepsEveryArrayBitForBit1D) {
 }
 TEST(Checkpoint, RoundTripKeepsEveryArrayBitForBit2D) { round_trip<2>("cpdi2", R"("flip")"); }
 TEST(Checkpoint, RoundTripKeepsEveryArrayBitForBit3D) { round_trip<3>("cpdi2", R"("xpic")"); }
+
+// --- the checkpoint writes every array that for_each_array visits (particles/particle_set.hpp) ---
+
+/// The names of the datasets in an HDF5 group.
+std::set<std::string> datasets_in(const fs::path& file, const char* group) {
+  std::set<std::string> names;
+  const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_file_locking(access, false, true);  // as Hdf5Reader opens it
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, access);
+  H5Pclose(access);
+  const hid_t g = H5Gopen2(f, group, H5P_DEFAULT);
+  H5G_info_t info;
+  EXPECT_GE(H5Gget_info(g, &info), 0) << "group " << group << " of " << file;
+  for (hsize_t k = 0; k < info.nlinks; ++k) {
+    char name[256];
+    H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT);
+    names.insert(name);
+  }
+  H5Gclose(g);
+  H5Fclose(f);
+  return names;
+}
+
+/// The checkpoint keeps the particle arrays one dataset each (names of docs/output.md) and X_p,
+/// V_p(0) by id as simulation/initial_position, initial_velocity. Each dataset with a row per
+/// particle must be an array that for_each_array visits and each visited array must have its
+/// dataset, so a particle array added to one and not the other fails here.
+template <int D>
+void expect_checkpoint_has_every_visited_array(const std::string& shape, const std::string& text) {
+  const Spec spec = parse_spec(text);
+  const Simulation<D> sim = build_simulation<D>(spec);
+  ASSERT_GT(sim.particles.size(), 1u);
+  const fs::path dir = scratch("visitor_" + std::to_string(D) + shape);
+  write_checkpoint<D>(dir / kCheckpointFile, dir / kPreviousCheckpointFile, sim, counters(), history_of(D, 1),
+                      spec.echo);
+  std::set<std::string> visited;
+  for_each_array(sim.particles, [&visited](const char* name, const auto&, std::size_t) {
+    const std::string array(name);
+    visited.insert(array == "x0"   ? "simulation/initial_position"
+                   : array == "v0" ? "simulation/initial_velocity"
+                                   : "particles/" + array);
+  });
+  const auto names = datasets_in(dir / kCheckpointFile, "particles");
+  ASSERT_TRUE(names.count("x") == 1 && names.count("track_corners") == 1) << "the particles group is listed";
+  const Hdf5Reader r(dir / kCheckpointFile);
+  std::set<std::string> per_particle;  // the datasets with one row per particle
+  for (const auto& name : names)
+    if (r.shape("particles/" + name).front() == sim.particles.size())
+      per_particle.insert("particles/" + name);
+  for (const char* name : {"simulation/initial_position", "simulation/initial_velocity"})
+    if (r.shape(name).front() == sim.particles.size()) per_particle.insert(name);
+  EXPECT_EQ(per_particle, visited) << D << "-D " << shape;
+}
+
+TEST(Checkpoint, WritesEveryArrayThatForEachArrayVisits) {
+  // 2-D CPDI2 with heat: every optional array (stress_zz, corners, temperature) in use.
+  std::string text = input_text(2, "cpdi2", R"("flip")");
+  const std::string nu = R"("nu": 0.3})";
+  text.replace(text.find(nu), nu.size(), R"("nu": 0.3, "heat_capacity": 1000, "conductivity": 20})");
+  text.insert(text.rfind('}'), R"(, "heat": {"initial_temperature": 300})");
+  expect_checkpoint_has_every_visited_array<2>("cpdi2_heat", text);
+  expect_checkpoint_has_every_visited_array<1>("linear", input_text(1, "linear", R"("flip")"));
+  expect_checkpoint_has_every_visited_array<3>("cpdi2", input_text(3, "cpdi2", R"("xpic")"));
+}
 
 TEST(Checkpoint, SecondCheckpointKeepsThePreviousOne) {
   const Spec spec = parse_spec(input_text(2, "linear", R"("flip")"));

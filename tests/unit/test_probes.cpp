@@ -12,6 +12,13 @@ TEST(Probes, FollowTheNearestReferencePositionAndTheLowestIdOnATie) {
   const std::vector<Vec<2>> reference{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}};
   const std::vector<ProbeSpec> probes{{"a", {0.9, 0.2, 0}}, {"tie", {0.5, 0.5, 0}}, {"far", {5, 5, 0}}};
   EXPECT_EQ(probe_particle_ids<2>(reference, probes), (std::vector<long>{1, 0, 3}));
+  // The same by the particles' reference positions X_p, stored in another order than their ids.
+  ParticleSet<2> ps;
+  for (const auto& X : reference) ps.add(X, Vec<2>(0, 0), 1.0, 1.0, Vec<2>(1, 1), 0, 0);
+  ps.id = {3, 2, 1, 0};
+  ps.x0 = {reference[3], reference[2], reference[1], reference[0]};
+  ps.x = {Vec<2>(9, 9), Vec<2>(9, 9), Vec<2>(9, 9), Vec<2>(9, 9)};  // moved: only X_p counts
+  EXPECT_EQ(probe_particle_ids<2>(ps, probes), (std::vector<long>{1, 0, 3}));
 }
 
 TEST(Probes, ColumnNamesPerDimension) {
@@ -30,12 +37,13 @@ TEST(Probes, ValuesOfTheFollowedParticleAfterSorting) {
   for (int k = 0; k < 3; ++k) ps.add(Vec<2>(k, 0), Vec<2>(0, 0), 1.0, 1.0, Vec<2>(1, 1), 0, 0);
   const std::vector<Vec<2>> reference = ps.x;  // by id
   ps.id = {2, 0, 1};  // storage order as a sort by cell might leave it: id 1 is stored last,
+  ps.x0 = {reference[2], reference[0], reference[1]};
   ps.x = {reference[2], reference[0], Vec<2>(1.5, 0.25)};  // moved and deformed
   ps.v[2] = Vec<2>(3, 4);
   ps.F[2] << 2, 0, 0, 1.5;
   ps.stress[2] << 10, 5, 5, 20;
   std::vector<double> values;
-  append_probe_values<2>(ps, reference, {1}, values);
+  append_probe_values<2>(ps, {1}, values);
   EXPECT_EQ(values, (std::vector<double>{1.5, 0.25, 0.5, 0.25, 3, 4, 10, 20, 5, 3}));
 }
 

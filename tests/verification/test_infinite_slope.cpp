@@ -99,8 +99,7 @@ SlopeRun run_slope(double theta, double psi_deg = 25) {
   auto record = [&] {
     double momentum = 0, mass = 0;
     for (std::size_t p = 0; p < ps.size(); ++p)
-      if (in_middle(sim.initial_position[ps.id[p]][0]))
-        momentum += ps.mass[p] * ps.v[p][0], mass += ps.mass[p];
+      if (in_middle(ps.x0[p][0])) momentum += ps.mass[p] * ps.v[p][0], mass += ps.mass[p];
     run.time.push_back(sim.time);
     run.middle_velocity.push_back(momentum / mass);
   };
@@ -113,7 +112,7 @@ SlopeRun run_slope(double theta, double psi_deg = 25) {
   const double scale = kRho * kG * std::cos(theta) * kHeight;
   double upper_momentum = 0, upper_mass = 0, count = 0;
   for (std::size_t p = 0; p < ps.size(); ++p) {
-    const Vec<2> X = sim.initial_position[ps.id[p]];
+    const Vec<2> X = ps.x0[p];
     if (!in_middle(X[0])) continue;
     const double depth = kHeight - X[1];
     if (depth < 0.5 * kHeight) upper_momentum += ps.mass[p] * ps.v[p][0], upper_mass += ps.mass[p];

@@ -83,9 +83,7 @@ double simulated_F(UpdateScheme scheme, int steps) {
   for (int n = 0; n < steps; ++n) stepper.step(kEnd / steps);
   std::size_t middle = 0;
   for (std::size_t p = 0; p < sim.particles.size(); ++p)
-    if (std::abs(sim.initial_position[sim.particles.id[p]][0] - 0.5) <
-        std::abs(sim.initial_position[sim.particles.id[middle]][0] - 0.5))
-      middle = p;
+    if (std::abs(sim.particles.x0[p][0] - 0.5) < std::abs(sim.particles.x0[middle][0] - 0.5)) middle = p;
   return sim.particles.F[middle](0, 0);
 }
 

@@ -24,8 +24,7 @@ template <int D> Diagnostics<D> measure_diagnostics(const Simulation<D>& sim, in
     const double J = ps.F[p].determinant();
     d.min_jacobian = std::min(d.min_jacobian, J);
     d.max_jacobian = std::max(d.max_jacobian, J);
-    if (!sim.initial_velocity.empty())
-      d.rms_velocity_change += (ps.v[p] - sim.initial_velocity[static_cast<std::size_t>(ps.id[p])]).squaredNorm();
+    d.rms_velocity_change += (ps.v[p] - ps.v0[p]).squaredNorm();
   }
   d.rms_velocity_change = ps.size() ? std::sqrt(d.rms_velocity_change / static_cast<double>(ps.size())) : 0.0;
   for (int b = 0; b < body_count; ++b) {

@@ -40,7 +40,8 @@ inline std::vector<std::string> probe_column_names(const std::string& name, int 
   return out;
 }
 
-/// Particle ids followed by the probes: the nearest reference position, ties to the lowest id.
+/// Ids followed by the probes: the nearest reference position (by id: an implicit run's nodes),
+/// ties to the lowest id.
 template <int D>
 std::vector<long> probe_particle_ids(const std::vector<Vec<D>>& reference_position,
                                      const std::vector<ProbeSpec>& probes) {
@@ -62,18 +63,41 @@ std::vector<long> probe_particle_ids(const std::vector<Vec<D>>& reference_positi
   return ids;
 }
 
-/// Appends the probe values (column order of probe_column_names) of the particles `ids`.
+/// Particle ids followed by the probes: the particle whose reference position X_p (particles.x0)
+/// is nearest, ties to the lowest id (the storage order does not matter).
 template <int D>
-void append_probe_values(const ParticleSet<D>& particles, const std::vector<Vec<D>>& reference_position,
-                         const std::vector<long>& ids, std::vector<double>& out) {
+std::vector<long> probe_particle_ids(const ParticleSet<D>& particles, const std::vector<ProbeSpec>& probes) {
+  std::vector<long> ids;
+  for (const auto& probe : probes) {
+    Vec<D> target;
+    for (int a = 0; a < D; ++a) target[a] = probe.position[a];
+    long best = -1;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < particles.size(); ++p) {
+      const double distance = (particles.x0[p] - target).squaredNorm();
+      if (distance < best_distance || (distance == best_distance && particles.id[p] < best)) {
+        best_distance = distance;
+        best = particles.id[p];
+      }
+    }
+    ids.push_back(best);
+  }
+  return ids;
+}
+
+/// Appends the probe values (column order of probe_column_names) of the particles `ids`
+/// (0 <= id < particles.size(): ids are the generation order).
+template <int D>
+void append_probe_values(const ParticleSet<D>& particles, const std::vector<long>& ids,
+                         std::vector<double>& out) {
   if (ids.empty()) return;
-  std::vector<long> index_of(reference_position.size(), -1);
+  std::vector<long> index_of(particles.size(), -1);
   for (std::size_t p = 0; p < particles.size(); ++p) index_of[particles.id[p]] = static_cast<long>(p);
   for (long id : ids) {
     const auto p = static_cast<std::size_t>(index_of[id]);
     const Vec<D>& x = particles.x[p];
     for (int a = 0; a < D; ++a) out.push_back(x[a]);
-    for (int a = 0; a < D; ++a) out.push_back(x[a] - reference_position[id][a]);
+    for (int a = 0; a < D; ++a) out.push_back(x[a] - particles.x0[p][a]);
     for (int a = 0; a < D; ++a) out.push_back(particles.v[p][a]);
     for (const auto& [i, j] : probe_stress_components<D>()) out.push_back(particles.stress[p](i, j));
     out.push_back(particles.F[p].determinant());

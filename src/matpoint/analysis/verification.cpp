@@ -182,7 +182,7 @@ double grid_velocity_error(const Simulation<D>& sim, const ManufacturedSolution&
   for (int a = 0; a < D; ++a) {
     for (std::size_t p = 0; p < ps.size(); ++p) {
       numeric[p] = ps.v[p][a];
-      reference[p] = exact.V(sim.initial_position[ps.id[p]][a], t_half);
+      reference[p] = exact.V(ps.x0[p][a], t_half);
     }
     for (Index i = 0; i < sim.grid.node_count; ++i) {
       const auto ijk = sim.grid.node_coords(i);
@@ -205,9 +205,8 @@ MmsResult run_with(const MmsOptions& o, int cells) {
   // O(dt^2) because A(X, 0) = B(X, 0) = 0).
   for (std::size_t p = 0; p < sim.particles.size(); ++p)
     for (int a = 0; a < D; ++a) sim.particles.v[p][a] = exact.V(sim.particles.x[p][a], 0.0);
-  sim.initial_velocity = sim.initial_position;
-  for (std::size_t k = 0; k < sim.initial_position.size(); ++k)
-    for (int a = 0; a < D; ++a) sim.initial_velocity[k][a] = exact.V(sim.initial_position[k][a], 0.0);
+  for (std::size_t p = 0; p < sim.particles.size(); ++p)
+    for (int a = 0; a < D; ++a) sim.particles.v0[p][a] = exact.V(sim.particles.x0[p][a], 0.0);
   sim.body_force = [exact](const Vec<D>& X, double t) { return exact.body_force<D>(X, t); };
 
   MmsResult r;
@@ -232,7 +231,7 @@ MmsResult run_with(const MmsOptions& o, int cells) {
   r.min_jacobian = std::numeric_limits<double>::infinity();
   r.max_jacobian = -r.min_jacobian;
   for (std::size_t p = 0; p < sim.particles.size(); ++p) {
-    const Vec<D>& X = sim.initial_position[sim.particles.id[p]];
+    const Vec<D>& X = sim.particles.x0[p];
     const double J = sim.particles.F[p].determinant();
     r.min_jacobian = std::min(r.min_jacobian, J);
     r.max_jacobian = std::max(r.max_jacobian, J);

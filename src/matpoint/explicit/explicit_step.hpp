@@ -224,8 +224,7 @@ class ExplicitStepper {
   const std::vector<Vec<D>>& evaluate_body_force() {
     auto& b = s_.body_force_values;
     b.resize(s_.particles.size());
-    for (std::size_t p = 0; p < b.size(); ++p)
-      b[p] = s_.body_force(s_.initial_position[s_.particles.id[p]], s_.time);
+    for (std::size_t p = 0; p < b.size(); ++p) b[p] = s_.body_force(s_.particles.x0[p], s_.time);
     return b;
   }
 

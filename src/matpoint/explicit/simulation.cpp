@@ -101,6 +101,7 @@ void set_up_heat(const Spec& spec, Simulation<D>& sim) {
       sim.max_diffusivity = std::max(sim.max_diffusivity, m.conductivity / (m.density * m.heat_capacity));
   }
   auto& ps = sim.particles;
+  ps.has_temperature = true;
   ps.temperature.assign(ps.size(), h.initial_temperature);
   for (const auto& [body, T] : h.body_temperatures)
     for (std::size_t p = 0; p < ps.size(); ++p)
@@ -145,8 +146,8 @@ Simulation<D> build_simulation(const Spec& spec) {
   if (auto overlaps = overlapping_bodies<D>(spec, sim.particles, h); !overlaps.empty())
     throw InputError(std::move(overlaps));
   set_geostatic_stress<D>(sim.materials, spec.bodies, spec.loads.gravity, sim.particles);
-  sim.initial_velocity = sim.particles.v;  // generation order = id order
-  sim.initial_position = sim.particles.x;
+  sim.particles.x0 = sim.particles.x;  // X_p and V_p(0): as generated, velocity noise included
+  sim.particles.v0 = sim.particles.v;
   sort_by_cell(sim.grid, sim.particles);
   update_stress<D>(sim.materials, sim.particles);
 

@@ -29,11 +29,8 @@ struct Simulation {
   // its relative velocity change carries no information and would dominate a per-node mean.
   double significant_mass = 0.0;
 
-  std::vector<Vec<D>> initial_velocity;  // V_p(0) by particle id (velocity-change diagnostics)
-  std::vector<Vec<D>> initial_position;  // X_p (Lagrangian position) by particle id
-
   /// Optional body force per unit mass B(X, t), evaluated at each particle's Lagrangian position
-  /// X_p and the start-of-step time and added to the gravity (Gong 2015 extraction A7: the
+  /// X_p (particles.x0) and the start-of-step time and added to the gravity (Gong 2015 extraction A7: the
   /// manufactured solutions' eqs. (4.39), (4.46)). Empty (the default): gravity only, no cost.
   std::function<Vec<D>(const Vec<D>& X, double t)> body_force;
   std::vector<Vec<D>> body_force_values;  // scratch: B(X_p, t) by storage index, for the scatter

@@ -52,6 +52,27 @@ std::vector<To> convert(const std::vector<From>& in) {
   return std::vector<To>(in.begin(), in.end());
 }
 
+// --- X_p and V_p(0): kept by particle id in the file (simulation/initial_*), by storage index
+// in the particle set ---
+
+template <int D>
+std::vector<Vec<D>> by_id(const ParticleSet<D>& ps, const std::vector<Vec<D>>& values) {
+  std::vector<Vec<D>> out(values.size());
+  for (std::size_t p = 0; p < ps.size(); ++p) out.at(static_cast<std::size_t>(ps.id[p])) = values[p];
+  return out;
+}
+
+template <int D>
+void from_id(const ParticleSet<D>& ps, const std::vector<Vec<D>>& values, std::vector<Vec<D>>& out) {
+  out.resize(ps.size());
+  for (std::size_t p = 0; p < ps.size(); ++p) {
+    const auto id = static_cast<std::size_t>(ps.id[p]);
+    if (ps.id[p] < 0 || id >= values.size())
+      throw Hdf5Error("dataset particles/id holds " + std::to_string(ps.id[p]) + ", outside 0 .. n - 1");
+    out[p] = values[id];
+  }
+}
+
 // --- history rows ---
 
 std::vector<double> history_rows(const History& history) {
@@ -301,8 +322,8 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   w.write("simulation/grid_momentum_difference",
           std::vector<double>(sim.grid_momentum_difference.data(), sim.grid_momentum_difference.data() + D),
           {D});
-  w.write("simulation/initial_velocity", flat(sim.initial_velocity), {h(sim.initial_velocity.size()), D});
-  w.write("simulation/initial_position", flat(sim.initial_position), {h(sim.initial_position.size()), D});
+  w.write("simulation/initial_velocity", flat(by_id(ps, ps.v0)), {n, D});
+  w.write("simulation/initial_position", flat(by_id(ps, ps.x0)), {n, D});
 
   w.write("run/dt", run.dt);
   w.write("run/momentum_scale", run.momentum_scale);
@@ -368,8 +389,11 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   for (int a = 0; a < D; ++a) sim.external_impulse[a] = impulse[a];
   const auto difference = r.doubles("simulation/grid_momentum_difference", {D});
   for (int a = 0; a < D; ++a) sim.grid_momentum_difference[a] = difference[a];
-  unflat(r.doubles("simulation/initial_velocity", {n, D}), sim.initial_velocity);
-  unflat(r.doubles("simulation/initial_position", {n, D}), sim.initial_position);
+  std::vector<Vec<D>> by_id_values;
+  unflat(r.doubles("simulation/initial_velocity", {n, D}), by_id_values);
+  from_id(ps, by_id_values, ps.v0);
+  unflat(r.doubles("simulation/initial_position", {n, D}), by_id_values);
+  from_id(ps, by_id_values, ps.x0);
 
   run.dt = r.number("run/dt");
   run.momentum_scale = r.number("run/momentum_scale");

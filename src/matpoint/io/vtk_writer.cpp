@@ -149,16 +149,15 @@ bool wanted(const std::vector<std::string>& fields, const std::string& name) {
 }  // namespace
 
 template <int D>
-std::string particles_vtu(const ParticleSet<D>& ps, const std::vector<std::string>& fields,
-                          const std::vector<Vec<D>>* initial_position,
+std::string particles_vtu(const ParticleSet<D>& ps, const std::vector<std::string>& fields, bool displacement,
                           const std::vector<std::string>& state_names) {
   const std::size_t n = ps.size();
   AppendedData data;
   std::ostringstream point_data;
   if (wanted(fields, "velocity")) point_data << data.array("velocity", "Float64", 3, padded_vectors<D>(ps.v));
-  if (wanted(fields, "displacement") && initial_position != nullptr) {  // u = x - X (X by particle id)
+  if (wanted(fields, "displacement") && displacement) {  // u = x - X
     std::vector<Vec<D>> u(n);
-    for (std::size_t p = 0; p < n; ++p) u[p] = ps.x[p] - (*initial_position)[ps.id[p]];
+    for (std::size_t p = 0; p < n; ++p) u[p] = ps.x[p] - ps.x0[p];
     point_data << data.array("displacement", "Float64", 3, padded_vectors<D>(u));
   }
   if (wanted(fields, "stress")) point_data << data.array("stress", "Float64", 9, stress_3x3(ps));
@@ -296,12 +295,12 @@ void PvdCollection::write() const {
   write_file_atomically(file_, out.str());
 }
 
-template std::string particles_vtu<1>(const ParticleSet<1>&, const std::vector<std::string>&,
-                                      const std::vector<Vec<1>>*, const std::vector<std::string>&);
-template std::string particles_vtu<2>(const ParticleSet<2>&, const std::vector<std::string>&,
-                                      const std::vector<Vec<2>>*, const std::vector<std::string>&);
-template std::string particles_vtu<3>(const ParticleSet<3>&, const std::vector<std::string>&,
-                                      const std::vector<Vec<3>>*, const std::vector<std::string>&);
+template std::string particles_vtu<1>(const ParticleSet<1>&, const std::vector<std::string>&, bool,
+                                      const std::vector<std::string>&);
+template std::string particles_vtu<2>(const ParticleSet<2>&, const std::vector<std::string>&, bool,
+                                      const std::vector<std::string>&);
+template std::string particles_vtu<3>(const ParticleSet<3>&, const std::vector<std::string>&, bool,
+                                      const std::vector<std::string>&);
 template std::string domains_vtu<1>(const std::vector<ParticleSet<1>::Corners>&, const ParticleSet<1>&);
 template std::string domains_vtu<2>(const std::vector<ParticleSet<2>::Corners>&, const ParticleSet<2>&);
 template std::string domains_vtu<3>(const std::vector<ParticleSet<3>::Corners>&, const ParticleSet<3>&);

@@ -12,13 +12,12 @@
 namespace matpoint {
 
 /// The .vtu file of a particle set. `fields` lists the point data to write (names from
-/// io/particle_fields.hpp); empty means all. `initial_position` (X by particle id) gives the
-/// displacement field; without it none is written. `state_names` name the components of the
+/// io/particle_fields.hpp); empty means all. `displacement` writes u = x - X (X: particles.x0);
+/// without it none is written. `state_names` name the components of the
 /// `state` array (ComponentName attributes, shown by ParaView).
 template <int D>
 std::string particles_vtu(const ParticleSet<D>& particles, const std::vector<std::string>& fields,
-                          const std::vector<Vec<D>>* initial_position = nullptr,
-                          const std::vector<std::string>& state_names = {});
+                          bool displacement = false, const std::vector<std::string>& state_names = {});
 
 /// The .vtu text of the particle domains: one cell per particle (VTK_LINE in 1-D, VTK_QUAD in
 /// 2-D, VTK_HEXAHEDRON in 3-D) from corners in tensor order, with the cell data `id` and `body`.

@@ -66,10 +66,18 @@ void bounding_box(const BodySpec& body, Vec<D>& lo, Vec<D>& hi) {
   }
 }
 
-template <int D>
-void permute(std::vector<Index> const& order, auto& array) {
-  auto copy = array;
-  for (std::size_t k = 0; k < order.size(); ++k) array[k] = copy[order[k]];
+/// array's blocks of `count` elements in the storage order `order` (block k <- block order[k]).
+template <class T>
+void permute(const std::vector<Index>& order, std::vector<T>& array, std::size_t count) {
+  if (count == 0) return;
+  const std::vector<T> copy = array;
+  if (count == 1) {
+    for (std::size_t k = 0; k < order.size(); ++k) array[k] = copy[order[k]];
+    return;
+  }
+  for (std::size_t k = 0; k < order.size(); ++k)
+    std::copy_n(copy.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(order[k]) * count), count,
+                array.begin() + static_cast<std::ptrdiff_t>(k * count));
 }
 
 /// Aulisa & Capodaglio's graded disk or beam (particles/graded_generators.hpp; the beam's left end
@@ -248,26 +256,8 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
   std::vector<Index> order(n);
   for (std::size_t p = 0; p < n; ++p) order[start[cell[p]]++] = static_cast<Index>(p);
 
-  permute<D>(order, particles.x);
-  permute<D>(order, particles.v);
-  permute<D>(order, particles.mass);
-  permute<D>(order, particles.volume0);
-  permute<D>(order, particles.size0);
-  permute<D>(order, particles.F);
-  permute<D>(order, particles.stress);
-  if (!particles.stress_zz.empty()) permute<D>(order, particles.stress_zz);
-  permute<D>(order, particles.L);
-  permute<D>(order, particles.material);
-  permute<D>(order, particles.body);
-  permute<D>(order, particles.id);
-  if (!particles.corners.empty()) permute<D>(order, particles.corners);
-  if (!particles.temperature.empty()) permute<D>(order, particles.temperature);
-  if (particles.state_stride > 0) {
-    const auto copy = particles.state;
-    const int s = particles.state_stride;
-    for (std::size_t k = 0; k < n; ++k)
-      std::copy_n(copy.begin() + order[k] * s, s, particles.state.begin() + static_cast<Index>(k) * s);
-  }
+  for_each_array(particles,
+                 [&order](const char*, auto& array, std::size_t count) { permute(order, array, count); });
 }
 
 #define MATPOINT_INSTANTIATE(D)                                                                    \

@@ -1,7 +1,10 @@
 // Particles as a structure of arrays, kept sorted by cell (DESIGN.md: arrays, not objects).
+// for_each_array (below) lists every per-particle array: a new one must be added there too, so
+// that sorting (and, later, migration between ranks: docs/scale-out.md §5) carries it.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "matpoint/core/types.hpp"
@@ -26,6 +29,11 @@ struct ParticleSet {
   std::vector<int> material;  // index into the simulation's materials
   std::vector<int> body;      // index into the input's bodies
   std::vector<long> id;       // stable id: the generation order, unchanged by sorting
+  // Lagrangian position X_p and initial velocity V_p(0), as generated (add() sets them to the
+  // position and velocity given; build_simulation sets them again after the velocity noise).
+  // Displacement u = x - X, probes, body forces B(X, t), the rms velocity change.
+  std::vector<Vec<D>> x0;
+  std::vector<Vec<D>> v0;
   // Per-material history: state_stride values per particle (0 for the elastic materials).
   int state_stride = 0;
   std::vector<double> state;
@@ -37,7 +45,9 @@ struct ParticleSet {
   // +1 along axis a where bit a of c is set (tensor order: (-,-), (+,-), (-,+), (+,+) in 2-D).
   bool track_corners = false;
   std::vector<Corners> corners;
-  // Coupled heat conduction (io/spec.hpp HeatSpec): temperature per particle; empty when off.
+  // Coupled heat conduction (io/spec.hpp HeatSpec): temperature per particle, kept when
+  // has_temperature is set (add() then starts a particle at 0); empty when off.
+  bool has_temperature = false;
   std::vector<double> temperature;
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
@@ -57,6 +67,8 @@ struct ParticleSet {
     id.push_back(static_cast<long>(x.size()));
     x.push_back(position);
     v.push_back(velocity);
+    x0.push_back(position);
+    v0.push_back(velocity);
     mass.push_back(m);
     volume0.push_back(vol);
     size0.push_back(size);
@@ -73,7 +85,48 @@ struct ParticleSet {
         for (int a = 0; a < D; ++a) c[k][a] = position[a] + ((k >> a & 1) != 0 ? 0.5 : -0.5) * size[a];
       corners.push_back(c);
     }
+    if (has_temperature) temperature.push_back(0.0);
   }
 };
+
+namespace particle_set_detail {
+
+template <int D, class Set, class Fn>
+void for_each_array(Set& ps, Fn&& fn) {
+  fn("x", ps.x, std::size_t{1});
+  fn("v", ps.v, std::size_t{1});
+  fn("mass", ps.mass, std::size_t{1});
+  fn("volume0", ps.volume0, std::size_t{1});
+  fn("size0", ps.size0, std::size_t{1});
+  fn("F", ps.F, std::size_t{1});
+  fn("stress", ps.stress, std::size_t{1});
+  if constexpr (D == 2) fn("stress_zz", ps.stress_zz, std::size_t{1});
+  fn("L", ps.L, std::size_t{1});
+  fn("material", ps.material, std::size_t{1});
+  fn("body", ps.body, std::size_t{1});
+  fn("id", ps.id, std::size_t{1});
+  fn("x0", ps.x0, std::size_t{1});
+  fn("v0", ps.v0, std::size_t{1});
+  fn("state", ps.state, static_cast<std::size_t>(ps.state_stride));
+  if (ps.track_corners) fn("corners", ps.corners, std::size_t{1});
+  if (ps.has_temperature) fn("temperature", ps.temperature, std::size_t{1});
+}
+
+}  // namespace particle_set_detail
+
+/// Calls fn(name, array, count) on every per-particle array of `ps` in use: `array` (a
+/// std::vector) holds `count` elements per particle, particle p's at [p * count, (p + 1) * count):
+/// state_stride doubles for `state` (count 0: no history), 1 for every other array. stress_zz is
+/// visited in 2-D only, corners with track_corners, temperature with has_temperature; the
+/// per-material plastic_material is not a particle array. Sorting and (later) migration use it, so
+/// an array listed here cannot be left behind (docs/scale-out.md §5).
+template <int D, class Fn>
+void for_each_array(ParticleSet<D>& ps, Fn&& fn) {
+  particle_set_detail::for_each_array<D>(ps, fn);
+}
+template <int D, class Fn>
+void for_each_array(const ParticleSet<D>& ps, Fn&& fn) {
+  particle_set_detail::for_each_array<D>(ps, fn);
+}
 
 }  // namespace matpoint

@@ -188,7 +188,7 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
   RunCounters run = start_state<D>(options, spec, solver, restored);  // may throw InputError
   const bool restarting = !options.restart.empty();
   std::filesystem::create_directories(options.out_dir);
-  const auto probe_ids = probe_particle_ids<D>(sim.initial_position, spec.output.probes);
+  const auto probe_ids = probe_particle_ids<D>(sim.particles, spec.output.probes);
   RunOutputs<D> outputs(spec, options.out_dir, std::move(restored), run, probe_ids);
   if (spec.output.particles) {
     std::string part;
@@ -307,10 +307,12 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
   facts.momentum_scale = run.momentum_scale;
   add_state_facts(sim, facts);
   solver.add_facts(facts);
-  for (long id : probe_ids) {
-    const Vec<D>& X = sim.initial_position[id];
-    facts.probes.push_back({id, std::vector<double>(X.data(), X.data() + D)});
-  }
+  for (long id : probe_ids)
+    for (std::size_t p = 0; p < sim.particles.size(); ++p)
+      if (sim.particles.id[p] == id) {
+        const Vec<D>& X = sim.particles.x0[p];
+        facts.probes.push_back({id, std::vector<double>(X.data(), X.data() + D)});
+      }
 
   result.summary = run_summary(spec, options, facts, outputs.history());
   write_file_atomically(options.out_dir / "summary.json", result.summary.dump(2) + "\n");

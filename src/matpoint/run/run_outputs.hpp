@@ -128,7 +128,7 @@ HistorySample history_sample(const Simulation<D>& sim, int body_count, const std
     s.body_com_velocity.push_back(pad<D>(Vec<D>(d.body_momentum[b] / std::max(d.body_mass[b], 1e-300))));
     s.body_com_position.push_back(pad<D>(d.body_com_position[b]));
   }
-  append_probe_values(sim.particles, sim.initial_position, probe_ids, s.probes);
+  append_probe_values(sim.particles, probe_ids, s.probes);
   return s;
 }
 
@@ -171,9 +171,8 @@ class RunOutputs {
       write_history();
     if (spec_.output.particles) {
       const std::string name = run_outputs_detail::output_name(outputs_, "particles_");
-      write_file_atomically(out_dir_ / name,
-                            particles_vtu(sim.particles, spec_.output.fields, &sim.initial_position,
-                                          state_component_names(sim)));
+      write_file_atomically(out_dir_ / name, particles_vtu(sim.particles, spec_.output.fields, true,
+                                                           state_component_names(sim)));
       pvd_.add(sim.time, name);
       if (frame_writer_)
         frame_writer_(out_dir_ / run_outputs_detail::output_name(outputs_, frame_prefix_.c_str()));
