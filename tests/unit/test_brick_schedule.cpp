@@ -80,17 +80,17 @@ void check_schedule(int cells, std::size_t n, int below, int above, int expected
 TEST(BrickSchedule, TwoDimensionalQuadraticStencilsUseFourColours) { check_schedule<2>(80, 600, 1, 2, 2); }
 
 TEST(BrickSchedule, StencilReachingABrickStillUsesTwoColoursPerAxis) {
-  check_schedule<2>(80, 600, 7, BrickSchedule<2>::kBrickCells - 7, 2);
+  check_schedule<2>(80, 600, 7, BrickSchedule<2>::kNarrowestBrick - 7, 2);
 }
 
 TEST(BrickSchedule, StencilReachingBeyondABrickTakesAThirdColourPerAxis) {
-  check_schedule<2>(120, 600, 7, BrickSchedule<2>::kBrickCells - 6, 3);
+  check_schedule<2>(120, 600, 7, BrickSchedule<2>::kNarrowestBrick - 6, 3);
 }
 
 TEST(BrickSchedule, ThreeDimensionalCubicStencils) { check_schedule<3>(40, 500, 1, 2, 2); }
 
 TEST(BrickSchedule, ThreeDimensionalStencilReachingBeyondABrick) {
-  check_schedule<3>(40, 500, 4, BrickSchedule<3>::kBrickCells - 3, 3);
+  check_schedule<3>(40, 500, 4, BrickSchedule<3>::kNarrowestBrick - 3, 3);
 }
 
 }  // namespace
