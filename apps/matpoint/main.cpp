@@ -18,11 +18,11 @@
 #include "matpoint/core/parallel_session.hpp"
 #include "matpoint/core/version.hpp"
 #include "matpoint/explicit/setup_warnings.hpp"
-#include "matpoint/run/runner.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/checkpoint.hpp"
 #include "matpoint/io/input.hpp"
 #include "matpoint/io/output_folder.hpp"
+#include "matpoint/run/runner.hpp"
 #include "run_estimate.hpp"
 #include "scripts_location.hpp"
 #include "stability_scan_command.hpp"
@@ -194,11 +194,19 @@ std::vector<std::string> split_petsc_options(int& argc, char** argv) {
 /// writes into DIR.rank<r>, and the checkpoint it restarts from is the one in its own folder.
 void separate_rank_outputs(RunOptions& options) {
   const int rank = ParallelSession::rank();
-  if (rank == 0) return;
+  if (rank == 0) {
+    if (ParallelSession::size() > 1)
+      std::fprintf(stderr,
+                   "note: %d MPI ranks: every rank runs the whole simulation (the explicit domain "
+                   "decomposition is not built yet; only the implicit linear solves with "
+                   "solver.implicit.linear_solver \"petsc\" are shared); rank r > 0 writes into %s.rank<r>\n",
+                   ParallelSession::size(), options.out_dir.string().c_str());
+    return;
+  }
   const std::string suffix = ".rank" + std::to_string(rank);
   if (!options.restart.empty())
-    options.restart = std::filesystem::path(options.restart.parent_path().string() + suffix) /
-                      options.restart.filename();
+    options.restart =
+        std::filesystem::path(options.restart.parent_path().string() + suffix) / options.restart.filename();
   std::filesystem::path folder = options.out_dir.lexically_normal();
   if (!folder.has_filename()) folder = folder.parent_path();  // "out/" is "out"
   options.out_dir = std::filesystem::path(folder.string() + suffix);

@@ -1,18 +1,20 @@
 // Materials: the stress is the derivative of the stored energy (P = dW/dF, sigma = P F^T / J),
 // checked by central differences; the small-strain limit equals Hooke's law; the exponential
 // deformation update is exact for a constant velocity gradient.
-#include "matpoint/core/matrix_exponential.hpp"
-#include "matpoint/material/material.hpp"
-
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <random>
+
+#include "matpoint/core/matrix_exponential.hpp"
+#include "matpoint/material/material.hpp"
 
 namespace {
 
 using namespace matpoint;
 
-template <int D, class Model> void check_stress_is_energy_derivative(const Model& model) {
+template <int D, class Model>
+void check_stress_is_energy_derivative(const Model& model) {
   Mat<D> F = Mat<D>::Identity();
   for (int i = 0; i < D; ++i)
     for (int j = 0; j < D; ++j) F(i, j) += 0.05 * (i + 1) - 0.03 * j + (i == j ? 0.08 : 0.0);
@@ -62,6 +64,28 @@ TEST(Material, WaveSpeeds) {
   const LinearElastic le{4.0, 100.0, 0.0, 50.0};
   EXPECT_DOUBLE_EQ(le.wave_speed<1>(), 5.0);                   // sqrt(E / rho)
   EXPECT_DOUBLE_EQ(le.wave_speed<2>(), std::sqrt(100.0 / 4));  // sqrt((lambda + 2 mu) / rho)
+}
+
+/// The 2-D closed form of the largest eigenvalue against Eigen's iterative symmetric solver, on
+/// left Cauchy-Green tensors B = F F^T of random deformations, and on matrices with equal or
+/// nearly equal eigenvalues (where the square root is of a small number).
+TEST(Material, LargestSymmetricEigenvalueMatchesEigensSolver) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.6, 0.6);
+  for (int k = 0; k < 2000; ++k) {
+    Mat<2> F;
+    F << 1 + u(rng), u(rng), u(rng), 1 + u(rng);
+    const Mat<2> B = F * F.transpose();
+    const double expected = Eigen::SelfAdjointEigenSolver<Mat<2>>(B).eigenvalues().maxCoeff();
+    EXPECT_NEAR(largest_symmetric_eigenvalue<2>(B), expected, 1e-15 * expected) << B;  // ~5 ulp
+  }
+  EXPECT_DOUBLE_EQ(largest_symmetric_eigenvalue<2>(Mat<2>::Identity() * 3.0), 3.0);
+  Mat<2> nearly;
+  nearly << 2.0, 1e-9, 1e-9, 2.0;
+  EXPECT_DOUBLE_EQ(largest_symmetric_eigenvalue<2>(nearly), 2.0 + 1e-9);
+  Mat<3> C = Mat<3>::Zero();
+  C.diagonal() << 1.0, 5.0, 2.0;
+  EXPECT_NEAR(largest_symmetric_eigenvalue<3>(C), 5.0, 1e-14);
 }
 
 TEST(MatrixExponential, MatchesClosedForms) {
@@ -124,10 +148,13 @@ Mat<D> random_deformation(std::mt19937& rng, double amplitude) {
 }  // namespace
 
 TEST(Material, CauchyStressIsSymmetricForEveryModel) {
-  const std::vector<std::pair<const char*, Material>> models{
-      {"linear_elastic", kSvk},       {"neo_hookean log_j", kLogJ},  {"neo_hookean half_j_squared", kHalfJ2},
-      {"mie_gruneisen", kMieGruneisen}, {"mohr_coulomb", kMohrCoulomb}, {"drucker_prager", kDruckerPrager},
-      {"von_mises", kVonMises}};
+  const std::vector<std::pair<const char*, Material>> models{{"linear_elastic", kSvk},
+                                                             {"neo_hookean log_j", kLogJ},
+                                                             {"neo_hookean half_j_squared", kHalfJ2},
+                                                             {"mie_gruneisen", kMieGruneisen},
+                                                             {"mohr_coulomb", kMohrCoulomb},
+                                                             {"drucker_prager", kDruckerPrager},
+                                                             {"von_mises", kVonMises}};
   std::mt19937 rng(42);
   for (int trial = 0; trial < 20; ++trial) {
     const Mat<2> F2 = random_deformation<2>(rng, 0.4);

@@ -247,7 +247,8 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
   bool sorted = true;
   for (std::size_t p = 0; p < n; ++p) {
     cell[p] = BrickSchedule<D>::brick_major_cell(grid, grid.cell_coords(particles.x[p]));
-    if (p > 0 && cell[p] < cell[p - 1]) sorted = false;
+    if (p > 0 && (cell[p] < cell[p - 1] || (cell[p] == cell[p - 1] && particles.id[p] < particles.id[p - 1])))
+      sorted = false;
   }
   if (sorted) return;
   std::vector<Index> start(cell_count + 1, 0);
@@ -255,6 +256,12 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
   for (Index c = 0; c < cell_count; ++c) start[c + 1] += start[c];
   std::vector<Index> order(n);
   for (std::size_t p = 0; p < n; ++p) order[start[cell[p]]++] = static_cast<Index>(p);
+  // Within a cell by id, so that the order depends on where the particles are and not on how they
+  // were stored before: on any number of ranks, once particles migrate (docs/scale-out.md §6).
+  // After the placement loop start[c] is the end of cell c.
+  const auto by_id = [&particles](Index a, Index b) { return particles.id[a] < particles.id[b]; };
+  for (Index c = 0, begin = 0; c < cell_count; begin = start[c], ++c)
+    if (start[c] - begin > 1) std::sort(order.begin() + begin, order.begin() + start[c], by_id);
 
   for_each_array(particles,
                  [&order](const char*, auto& array, std::size_t count) { permute(order, array, count); });

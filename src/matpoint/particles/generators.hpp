@@ -17,8 +17,9 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
 template <int D>
 bool shape_contains(const BodySpec& body, const Vec<D>& x);
 
-/// Stable counting sort of all particle arrays by the cell that holds them, cells in brick-major order
-/// (BrickSchedule::brick_major_cell): the particles of one brick of the scatter lie together.
+/// Sorts all particle arrays by the cell that holds them, cells in brick-major order
+/// (BrickSchedule::brick_major_cell: the particles of one brick of the scatter lie together), and
+/// by id within a cell: the resulting order does not depend on the order before.
 template <int D>
 void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles);
 
