@@ -40,22 +40,23 @@ inline std::vector<std::string> probe_column_names(const std::string& name, int 
   return out;
 }
 
-/// Ids followed by the probes: the nearest reference position (by id: an implicit run's nodes),
-/// ties to the lowest id.
-template <int D>
-std::vector<long> probe_particle_ids(const std::vector<Vec<D>>& reference_position,
-                                     const std::vector<ProbeSpec>& probes) {
+namespace probes_detail {
+
+/// For each probe, the id of the nearest of n points (position(k), id(k)), ties to the lowest id.
+template <int D, class Position, class Id>
+std::vector<long> nearest_ids(const std::vector<ProbeSpec>& probes, std::size_t n, const Position& position,
+                              const Id& id) {
   std::vector<long> ids;
   for (const auto& probe : probes) {
     Vec<D> target;
     for (int a = 0; a < D; ++a) target[a] = probe.position[a];
     long best = -1;
     double best_distance = std::numeric_limits<double>::infinity();
-    for (std::size_t id = 0; id < reference_position.size(); ++id) {
-      const double distance = (reference_position[id] - target).squaredNorm();
-      if (distance < best_distance) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const double distance = (position(k) - target).squaredNorm();
+      if (distance < best_distance || (distance == best_distance && id(k) < best)) {
         best_distance = distance;
-        best = static_cast<long>(id);
+        best = id(k);
       }
     }
     ids.push_back(best);
@@ -63,26 +64,26 @@ std::vector<long> probe_particle_ids(const std::vector<Vec<D>>& reference_positi
   return ids;
 }
 
+}  // namespace probes_detail
+
+/// Ids followed by the probes: the nearest reference position (by id: an implicit run's nodes),
+/// ties to the lowest id.
+template <int D>
+std::vector<long> probe_particle_ids(const std::vector<Vec<D>>& reference_position,
+                                     const std::vector<ProbeSpec>& probes) {
+  return probes_detail::nearest_ids<D>(
+      probes, reference_position.size(),
+      [&](std::size_t k) -> const Vec<D>& { return reference_position[k]; },
+      [](std::size_t k) { return static_cast<long>(k); });
+}
+
 /// Particle ids followed by the probes: the particle whose reference position X_p (particles.x0)
 /// is nearest, ties to the lowest id (the storage order does not matter).
 template <int D>
 std::vector<long> probe_particle_ids(const ParticleSet<D>& particles, const std::vector<ProbeSpec>& probes) {
-  std::vector<long> ids;
-  for (const auto& probe : probes) {
-    Vec<D> target;
-    for (int a = 0; a < D; ++a) target[a] = probe.position[a];
-    long best = -1;
-    double best_distance = std::numeric_limits<double>::infinity();
-    for (std::size_t p = 0; p < particles.size(); ++p) {
-      const double distance = (particles.x0[p] - target).squaredNorm();
-      if (distance < best_distance || (distance == best_distance && particles.id[p] < best)) {
-        best_distance = distance;
-        best = particles.id[p];
-      }
-    }
-    ids.push_back(best);
-  }
-  return ids;
+  return probes_detail::nearest_ids<D>(
+      probes, particles.size(), [&](std::size_t p) -> const Vec<D>& { return particles.x0[p]; },
+      [&](std::size_t p) { return particles.id[p]; });
 }
 
 /// Appends the probe values (column order of probe_column_names) of the particles `ids`
