@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "matpoint/explicit/contact.hpp"
@@ -10,6 +11,7 @@
 #include "matpoint/grid/velocity_conditions.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/material/material.hpp"
+#include "matpoint/parallel/communicator.hpp"
 #include "matpoint/particles/particle_set.hpp"
 
 namespace matpoint {
@@ -60,6 +62,15 @@ struct Simulation {
   // sum_i p_i - sum_p M_p V_p at the last momentum transfer: zero up to round-off with the
   // mass-weighted mapping, not with the MLS velocity of IMPM (Gong 2015 extraction A19).
   Vec<D> grid_momentum_difference = Vec<D>::Zero();
+
+  // A decomposed explicit run (issue 23, docs/scale-out.md): the ranks, and the flat indices
+  // [owned_nodes_begin, owned_nodes_end) of the grid nodes this rank owns. Every rank stores the
+  // whole grid, but holds complete values only on the nodes its particles reach; sums over nodes
+  // that are reported (history, condition impulses, grid modes) count only the owned ones, so that
+  // a node two ranks store counts once. Serial: one rank that owns every node.
+  Communicator comm;
+  Index owned_nodes_begin = 0, owned_nodes_end = std::numeric_limits<Index>::max();
+  [[nodiscard]] bool owns_node(Index node) const { return node >= owned_nodes_begin && node < owned_nodes_end; }
 };
 
 /// Grid ghost layers needed by a basis.

@@ -37,11 +37,16 @@ class BrickSchedule {
   /// The shortest brick edge, in cells: what separates two bricks of one colour (finish()).
   static constexpr int kNarrowestBrick = D == 1 ? brick_cells(0) : brick_cells(1);
 
+  /// Bricks along axis a of the grid (the last one may hold fewer cells).
+  [[nodiscard]] static int bricks_along(const Grid<D>& grid, int a) {
+    return (grid.cells[a] + brick_cells(a) - 1) >> brick_shift(a);
+  }
+
   /// Sizes the schedule for n particles on the grid's cells (before assign()).
   void reset(const Grid<D>& grid, std::size_t n) {
     Index count = 1;
     for (int a = 0; a < D; ++a) {
-      bricks_[a] = (grid.cells[a] + brick_cells(a) - 1) >> brick_shift(a);
+      bricks_[a] = bricks_along(grid, a);
       brick_stride_[a] = count;
       count *= bricks_[a];
     }
@@ -96,7 +101,7 @@ class BrickSchedule {
     Index brick = 0, brick_stride = 1, local = 0, local_stride = 1;
     for (int a = 0; a < D; ++a) {
       brick += static_cast<Index>(cell[a] >> brick_shift(a)) * brick_stride;
-      brick_stride *= (grid.cells[a] + brick_cells(a) - 1) >> brick_shift(a);
+      brick_stride *= bricks_along(grid, a);
       local += static_cast<Index>(cell[a] & (brick_cells(a) - 1)) * local_stride;
       local_stride *= brick_cells(a);
     }
@@ -106,13 +111,12 @@ class BrickSchedule {
   [[nodiscard]] static Index brick_major_cell_count(const Grid<D>& grid) {
     Index count = 1;
     for (int a = 0; a < D; ++a)
-      count *= static_cast<Index>((grid.cells[a] + brick_cells(a) - 1) >> brick_shift(a)) << brick_shift(a);
+      count *= static_cast<Index>(bricks_along(grid, a)) << brick_shift(a);
     return count;
   }
 
   [[nodiscard]] int colours() const { return static_cast<int>(colour_start_.size()) - 1; }
   [[nodiscard]] int colours_per_axis() const { return colours_per_axis_; }
-  [[nodiscard]] std::size_t particle_count() const { return order_.size(); }
 
   /// Calls visit(p) for every particle, brick by brick, colour after colour; the bricks of one
   /// colour are shared among the threads (fewer than kParallelMinimum particles: one thread).
@@ -148,22 +152,16 @@ class BrickSchedule {
     const int m = colours_per_axis_;
     int colour_count = 1;
     for (int a = 0; a < D; ++a) colour_count *= m;
-    auto& colour_of = colour_of_;  // -1: an empty brick
-    colour_of.resize(static_cast<std::size_t>(brick_count_));
+    // Counted, then placed: a counting sort of the non-empty bricks by colour (colour_of is cheap,
+    // so it is computed twice rather than kept).
     colour_start_.assign(static_cast<std::size_t>(colour_count) + 1, 0);
-    for (Index b = 0; b < brick_count_; ++b) {
-      if (start_[b] == start_[b + 1]) {
-        colour_of[b] = -1;
-        continue;
-      }
-      colour_of[b] = this->colour_of(b);
-      ++colour_start_[colour_of[b] + 1];
-    }
+    for (Index b = 0; b < brick_count_; ++b)
+      if (start_[b] != start_[b + 1]) ++colour_start_[colour_of(b) + 1];
     for (int c = 0; c < colour_count; ++c) colour_start_[c + 1] += colour_start_[c];
     coloured_.resize(static_cast<std::size_t>(colour_start_[colour_count]));
-    next_.assign(colour_start_.begin(), colour_start_.end() - 1);
+    std::vector<std::ptrdiff_t> next(colour_start_.begin(), colour_start_.end() - 1);
     for (Index b = 0; b < brick_count_; ++b)
-      if (colour_of[b] >= 0) coloured_[next_[colour_of[b]]++] = b;
+      if (start_[b] != start_[b + 1]) coloured_[next[colour_of(b)]++] = b;
   }
 
   std::array<Index, D> bricks_{}, brick_stride_{};
@@ -174,8 +172,6 @@ class BrickSchedule {
   std::vector<std::int32_t> order_;           // particle storage indices grouped by brick
   std::vector<std::ptrdiff_t> colour_start_;  // bricks of colour c: coloured_[colour_start_[c] ..]
   std::vector<Index> coloured_;               // non-empty bricks, by colour, ascending within one
-  std::vector<int> colour_of_;                // scratch of group_by_colour, kept between steps
-  std::vector<std::ptrdiff_t> next_;          // scratch of group_by_colour
 };
 
 }  // namespace matpoint
