@@ -99,17 +99,63 @@ bool same_folder(const std::filesystem::path& a, const std::filesystem::path& b)
   return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
 }
 
-int command_run(const std::string& input, const RunOptions& options, bool overwrite) {
+/// An implicit run under MPI: every rank runs the whole simulation (only the linear solves are
+/// shared), rank r > 0 writes into DIR.rank<r>, and the checkpoint it restarts from is the one in
+/// its own folder. (An explicit run is decomposed: the ranks share one folder.)
+void separate_rank_outputs(RunOptions& options) {
+  const int rank = ParallelSession::rank();
+  if (rank == 0) {
+    if (ParallelSession::size() > 1)
+      std::fprintf(stderr,
+                   "note: an implicit run on %d MPI ranks: every rank runs the whole simulation (only "
+                   "the linear solves with solver.implicit.linear_solver \"petsc\" are shared); rank r > 0 "
+                   "writes into %s.rank<r>\n",
+                   ParallelSession::size(), options.out_dir.string().c_str());
+    return;
+  }
+  const std::string suffix = ".rank" + std::to_string(rank);
+  if (!options.restart.empty())
+    options.restart =
+        std::filesystem::path(options.restart.parent_path().string() + suffix) / options.restart.filename();
+  std::filesystem::path folder = options.out_dir.lexically_normal();
+  if (!folder.has_filename()) folder = folder.parent_path();  // "out/" is "out"
+  options.out_dir = std::filesystem::path(folder.string() + suffix);
+  options.progress = false;
+}
+
+/// A decomposed run's rank r > 0: the run, and only its exit code (rank 0 reports).
+int run_quietly(const Spec& spec, const RunOptions& options) {
+  try {
+    return run_explicit(spec, options).exit_code;
+  } catch (const InputError&) {
+    return kExitBadInput;  // rank 0 reports it
+  }
+}
+
+int command_run(const std::string& input, RunOptions options, bool overwrite) {
   Spec spec;
   try {
     spec = load_spec(input);
   } catch (const InputError& error) {
     return report_input_error(error);
   }
+  // An explicit run on several ranks is decomposed (docs/scale-out.md): the ranks share the
+  // output folder, which rank 0 prepares, and only rank 0 talks.
+  const Communicator comm = Communicator::world();
+  const bool decomposed = comm.distributed() && !spec.solver.is_implicit();
+  if (!decomposed) separate_rank_outputs(options);
+  if (decomposed && !options.restart.empty())
+    return report_input_error(InputError({{"--restart", options.restart.string(),
+                                           "a run on 1 rank: restarting a decomposed run is not built yet"}}));
+  const bool talks = comm.rank() == 0 || !decomposed;
+  if (!talks) options.progress = false;
   // A restart continues in its checkpoint's folder; any other folder is checked like a fresh run's.
   const bool continues_in_place =
       !options.restart.empty() && same_folder(options.out_dir, options.restart.parent_path());
-  if (!continues_in_place && !prepare_output_folder(options.out_dir, overwrite)) return kExitBadInput;
+  bool prepared = continues_in_place || !talks || prepare_output_folder(options.out_dir, overwrite);
+  if (decomposed) prepared = comm.max(prepared ? 0L : 1L) == 0;  // the others wait for rank 0's folder
+  if (!prepared) return kExitBadInput;
+  if (!talks) return run_quietly(spec, options);
   if (const auto warning = courant_warning(spec.solver); !warning.empty())
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   // The estimate before the wait: always when it is long, otherwise unless --quiet.
@@ -190,28 +236,6 @@ std::vector<std::string> split_petsc_options(int& argc, char** argv) {
   return petsc;
 }
 
-/// Under MPI every rank runs the whole simulation (only the linear solves are shared): rank r > 0
-/// writes into DIR.rank<r>, and the checkpoint it restarts from is the one in its own folder.
-void separate_rank_outputs(RunOptions& options) {
-  const int rank = ParallelSession::rank();
-  if (rank == 0) {
-    if (ParallelSession::size() > 1)
-      std::fprintf(stderr,
-                   "note: %d MPI ranks: every rank runs the whole simulation (the explicit domain "
-                   "decomposition is not built yet; only the implicit linear solves with "
-                   "solver.implicit.linear_solver \"petsc\" are shared); rank r > 0 writes into %s.rank<r>\n",
-                   ParallelSession::size(), options.out_dir.string().c_str());
-    return;
-  }
-  const std::string suffix = ".rank" + std::to_string(rank);
-  if (!options.restart.empty())
-    options.restart =
-        std::filesystem::path(options.restart.parent_path().string() + suffix) / options.restart.filename();
-  std::filesystem::path folder = options.out_dir.lexically_normal();
-  if (!folder.has_filename()) folder = folder.parent_path();  // "out/" is "out"
-  options.out_dir = std::filesystem::path(folder.string() + suffix);
-  options.progress = false;
-}
 
 }  // namespace
 
@@ -293,7 +317,6 @@ int main(int argc, char** argv) {
       options.out_dir = options.restart.parent_path();
       if (options.out_dir.empty()) options.out_dir = ".";
     }
-    separate_rank_outputs(options);
     return command_run(input, options, overwrite);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

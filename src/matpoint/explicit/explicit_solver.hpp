@@ -13,6 +13,7 @@
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/checkpoint.hpp"
+#include "matpoint/parallel/decomposable.hpp"
 #include "matpoint/run/energy_guard.hpp"
 #include "matpoint/run/run_summary.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
@@ -40,12 +41,17 @@ class CappedDomains {
   }
 
   /// The warning, or an empty string when no particle reached the cap.
-  [[nodiscard]] std::string warning() const {
-    const auto count = std::count(capped_.begin(), capped_.end(), 1);
+  /// In a decomposed run each rank marks its own particles; `comm` adds the marks up.
+  [[nodiscard]] std::string warning(const Communicator& comm) const {
+    std::vector<double> marks{static_cast<double>(std::count(capped_.begin(), capped_.end(), 1))};
+    comm.sum(marks);
+    const auto count = static_cast<long>(marks[0]);
+    // the earliest first time of any rank (-1: none on this rank)
+    const double first_time = -comm.max(first_time_ < 0 ? -std::numeric_limits<double>::infinity() : -first_time_);
     if (count == 0) return {};
     std::ostringstream text;
     text << "cpGIMP: " << count << " of " << capped_.size()
-         << " particles were stretched past a domain half-width of h/2 (first at t = " << first_time_
+         << " particles were stretched past a domain half-width of h/2 (first at t = " << first_time
          << "); their domains were capped there and no longer have the volume V0 det F (Gong 2015 §6.3); "
             "uGIMP, CPDI or a finer grid avoid it";
     return text.str();
@@ -62,10 +68,23 @@ template <int D, class Stencils>
 class ExplicitSolver {
  public:
   /// Builds the simulation; throws InputError (nothing written yet) for what only the set-up finds.
-  explicit ExplicitSolver(const Spec& spec)
-      : spec_(spec), sim_(build_simulation<D>(spec)), stepper_(sim_), capped_(spec, sim_.particles.size()) {}
+  /// `comm`: the ranks that share the run (a decomposed run when there are several).
+  explicit ExplicitSolver(const Spec& spec, const Communicator& comm = Communicator::world())
+      : spec_(spec),
+        sim_(simulation_on_ranks(spec, comm)),
+        capped_(spec, sim_.particles.size()),  // by id, before the ranks keep their own particles
+        stepper_(sim_) {}
   ExplicitSolver(const ExplicitSolver&) = delete;
   ExplicitSolver& operator=(const ExplicitSolver&) = delete;
+
+  /// The whole simulation on every rank (each rank generates every particle, so the ids are the
+  /// generation order on any rank count); the stepper then keeps this rank's particles.
+  static Simulation<D> simulation_on_ranks(const Spec& spec, const Communicator& comm) {
+    check_decomposable(spec, comm.size());  // InputError: nothing run yet
+    Simulation<D> sim = build_simulation<D>(spec);
+    sim.comm = comm;
+    return sim;
+  }
 
   Simulation<D>& sim() { return sim_; }
   [[nodiscard]] const Simulation<D>& sim() const { return sim_; }
@@ -135,14 +154,14 @@ class ExplicitSolver {
     if (s.mapping != Mapping::MPM) facts.mls = stepper_.mls_statistics();
     if (sim_.has_contact && spec_.contact.normals == ContactNormals::Logistic)
       facts.logistic_fallbacks = sim_.contact.logistic_fallbacks();
-    if (auto warning = capped_.warning(); !warning.empty()) facts.warnings.push_back(std::move(warning));
+    if (auto warning = capped_.warning(sim_.comm); !warning.empty()) facts.warnings.push_back(std::move(warning));
   }
 
  private:
   const Spec& spec_;
   Simulation<D> sim_;
-  ExplicitStepper<D, Stencils> stepper_;
   CappedDomains capped_;
+  ExplicitStepper<D, Stencils> stepper_;
 };
 
 }  // namespace matpoint

@@ -3,6 +3,9 @@
 // plain arrays, and the stencils are evaluated once per step and reused by every transfer.
 #pragma once
 
+#include <limits>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -17,6 +20,9 @@
 #include "matpoint/explicit/mls_mapping.hpp"
 #include "matpoint/explicit/scatter.hpp"
 #include "matpoint/explicit/simulation.hpp"
+#include "matpoint/parallel/colour_hand_off.hpp"
+#include "matpoint/parallel/particle_migration.hpp"
+#include "matpoint/parallel/slab_partition.hpp"
 #include "matpoint/particles/generators.hpp"
 #include "matpoint/shape/domain_motion.hpp"
 
@@ -33,6 +39,7 @@ class ExplicitStepper {
   explicit ExplicitStepper(Simulation<D>& sim)
       : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm, sim.significant_mass), mls_(sim.solver.mls) {
     velocity_.resize(sim.fields.mass.size());
+    if (sim.comm.distributed()) decompose();
     if constexpr (kFields) set_up_fields();
     if (sim.heat.enabled) heat_ = HeatTransport<D>(sim, kFields ? static_cast<int>(sim.field_of.size()) : 1);
     for (std::size_t p = 0; p < sim.particles.size(); ++p)
@@ -46,9 +53,14 @@ class ExplicitStepper {
 
   /// Advances the simulation by dt; throws NumericalFailure naming step, time and particle.
   void step(double dt) {
-    if (s_.step % sort_interval == 0) sort_by_cell(s_.grid, s_.particles);
+    if (s_.step % sort_interval == 0) {
+      sort_by_cell(s_.grid, s_.particles);
+      if (ranks_) ranks_->migration.sorted(s_.particles);
+    }
     step_dt_ = dt;
     stencils_.evaluate(s_.grid, s_.particles);
+    if (ranks_)  // the particles that arrived since the last sort, in the serial run's order
+      brick_schedule().order_arrivals(ranks_->migration.keys(), s_.particles.id, ranks_->migration.sorted_prefix());
     if (const long p = first_corner_outside(stencils_); p >= 0) fail_corner_outside(p);
     if (s_.conditions.has_one_sided())
       mark_nodes_touching_faces(s_.grid, grid_, stencils_, s_.particles, s_.conditions);
@@ -94,6 +106,10 @@ class ExplicitStepper {
         break;
     }
     if (heat_.active()) heat_.step(s_, grid_, stencils_, s_.particles, dt, t_new, s_.boundary_heat);
+    if (ranks_) {
+      settle_failures();  // every rank stops together, with the first failing rank's message
+      ranks_->migration.migrate(s_.particles);
+    }
     s_.time = t_new;
     s_.last_dt = dt;
     ++s_.step;
@@ -172,12 +188,51 @@ class ExplicitStepper {
     }
   }
 
+  /// This rank's share (its owned nodes, its particles): the ranks' shares add up to the whole.
   void record_momentum_difference() {
     Vec<D> grid = Vec<D>::Zero(), particles = Vec<D>::Zero();
-    for (const auto& p : s_.fields.momentum) grid += p;
+    const auto& momentum = s_.fields.momentum;
+    const auto end = std::min<Index>(s_.owned_nodes_end, static_cast<Index>(momentum.size()));
+    for (Index i = s_.owned_nodes_begin; i < end; ++i) grid += momentum[i];
     for (std::size_t p = 0; p < s_.particles.size(); ++p)
       particles += s_.particles.mass[p] * s_.particles.v[p];
     s_.grid_momentum_difference = grid - particles;
+  }
+
+  /// A decomposed run (docs/scale-out.md): the slab partition by particle count, this rank's
+  /// particles and owned nodes, and the hand-off between the colours of every particle-to-grid sum.
+  void decompose() {
+    const auto& ps = s_.particles;
+    std::vector<std::array<int, D>> cells(ps.size());
+    for (std::size_t p = 0; p < ps.size(); ++p) cells[p] = s_.grid.cell_coords(ps.x[p]);
+    ranks_ = std::make_unique<Ranks>(s_.grid, SlabPartition<D>::balanced(s_.grid, cells, s_.comm.size()), s_.comm);
+    ranks_->migration.keep_own(s_.particles);
+    const auto [first, end] = ranks_->partition.owned_nodes_of(s_.comm.rank());
+    const Index stride = s_.grid.stride[SlabPartition<D>::kAxis];
+    s_.owned_nodes_begin = first * stride;
+    s_.owned_nodes_end = end * stride;
+    s_.conditions.count_only(s_.owned_nodes_begin, s_.owned_nodes_end);
+    brick_schedule().boundary = &ranks_->hand_off;
+  }
+
+  /// The stencils' particle order (of the base stencils in a multi-field run).
+  BrickSchedule<D>& brick_schedule() {
+    if constexpr (kFields)
+      return stencils_.base.bricks;
+    else
+      return stencils_.bricks;
+  }
+
+  /// The step's end in a decomposed run: when any rank failed in this step, every rank throws the
+  /// failure of the lowest failing rank (the others finished the step, so no message is pending).
+  void settle_failures() {
+    constexpr long kNone = std::numeric_limits<long>::max();
+    const long first = s_.comm.min(pending_failure_ ? static_cast<long>(s_.comm.rank()) : kNone);
+    if (first == kNone) return;
+    const int root = static_cast<int>(first);
+    const std::string entity = s_.comm.broadcast(pending_failure_ ? pending_failure_->first : "", root);
+    const std::string what = s_.comm.broadcast(pending_failure_ ? pending_failure_->second : "", root);
+    throw NumericalFailure(s_.step + 1, s_.time + step_dt_, entity, what);
   }
 
   void set_up_fields() {
@@ -338,7 +393,7 @@ class ExplicitStepper {
 
   /// Names which of the two the gather saw: a non-finite velocity or position, or a particle
   /// outside the grid (with the grid's extent).
-  [[noreturn]] void fail_outside(long p) const {
+  void fail_outside(long p) {
     std::ostringstream what;
     const auto& v = s_.particles.v[p];
     if (!v.allFinite() || !s_.particles.x[p].allFinite())
@@ -360,7 +415,7 @@ class ExplicitStepper {
       return -1;
   }
 
-  [[noreturn]] void fail_corner_outside(long p) const {
+  [[noreturn]] void fail_corner_outside(long p) {
     const auto& F = s_.particles.F[p];
     std::ostringstream what;
     what << "has a domain corner more than one cell outside the grid [" << s_.grid.origin.transpose()
@@ -369,16 +424,31 @@ class ExplicitStepper {
     what << "], det F = " << F.determinant()
          << "): its CPDI domain outgrew the grid; enlarge the grid, or refine if F is not physical";
     fail(p, what.str());
+    throw std::logic_error("a CPDI run on several ranks");  // refused by check_decomposable
   }
 
-  [[noreturn]] void fail(long p, const std::string& what) const {
+  /// Stops the run naming particle p. A decomposed run finishes the step first (the other ranks
+  /// wait for this one's messages) and stops at its end (settle_failures).
+  void fail(long p, const std::string& what) {
     std::ostringstream entity;
     entity << "particle " << s_.particles.id[p] << " (body " << s_.particles.body[p] << ") at x = ("
            << s_.particles.x[p].transpose() << ")";
-    throw NumericalFailure(s_.step + 1, s_.time + step_dt_, entity.str(), what);
+    if (!ranks_) throw NumericalFailure(s_.step + 1, s_.time + step_dt_, entity.str(), what);
+    if (!pending_failure_) pending_failure_.emplace(entity.str(), what);
   }
 
+  /// A decomposed run's partition, hand-off and migration (null in a serial run).
+  struct Ranks {
+    Ranks(const Grid<D>& grid, SlabPartition<D> slabs, const Communicator& comm)
+        : partition(std::move(slabs)), hand_off(grid, partition, comm), migration(grid, partition, comm) {}
+    SlabPartition<D> partition;
+    ColourHandOff<D> hand_off;
+    ParticleMigration<D> migration;
+  };
+
   Simulation<D>& s_;
+  std::unique_ptr<Ranks> ranks_;
+  std::optional<std::pair<std::string, std::string>> pending_failure_;  // entity, what
   Stencils stencils_;
   Grid<D> grid_;                      // s_.grid, with node_count over every field of a contact run
   std::vector<Vec<D>> velocity_;      // scratch node velocities for USF / MUSL

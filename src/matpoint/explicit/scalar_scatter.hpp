@@ -5,8 +5,10 @@
 // stencils' brick order, grid/brick_schedule.hpp).
 #pragma once
 
+#include <span>
 #include <vector>
 
+#include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/grid/grid.hpp"
 
 namespace matpoint {
@@ -17,11 +19,12 @@ template <int D, class Stencils, class Contribution>
 void scatter_scalar(const Grid<D>& grid, const Stencils& stencils, std::vector<double>& out,
                     const Contribution& contribution) {
   out.assign(static_cast<std::size_t>(grid.node_count), 0.0);
+  const NodeArray written{out.data(), 1};  // for a decomposed run's hand-off between colours
   stencils.brick_order().for_each_particle([&](std::size_t p) {
     stencils.for_each_node(grid, p, [&](Index node, double N, const Vec<D>& dN) {
       out[node] += contribution(static_cast<std::ptrdiff_t>(p), N, dN);
     });
-  });
+  }, std::span<const NodeArray>(&written, 1));
 }
 
 }  // namespace matpoint

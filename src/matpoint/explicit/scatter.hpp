@@ -7,8 +7,10 @@
 // stencils' brick order (grid/brick_schedule.hpp), so every node sums its terms in one fixed order.
 #pragma once
 
+#include <span>
 #include <vector>
 
+#include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/grid_fields.hpp"
 #include "matpoint/particles/particle_set.hpp"
@@ -36,6 +38,14 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
   double* const mass = fields.mass.data();  // raw pointers: no reloads through `fields` per node
   Vec<D>* const momentum = fields.momentum.data();
   Vec<D>* const force = fields.force.data();
+  // The arrays this sum writes, for a decomposed run's hand-off between colours (momentum and
+  // force are D contiguous doubles per node).
+  NodeArray written[3];
+  int count = 0;
+  if constexpr ((What & kScatterMass) != 0) written[count++] = {mass, 1};
+  if constexpr ((What & kScatterMomentum) != 0) written[count++] = {momentum->data(), D};
+  if constexpr ((What & kScatterForce) != 0) written[count++] = {force->data(), D};
+  static_assert(sizeof(Vec<D>) == D * sizeof(double));
   stencils.brick_order().for_each_particle([&](std::size_t p) {
     const double m = particles.mass[p];
     Vec<D> mv = Vec<D>::Zero();
@@ -51,7 +61,7 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
       if constexpr ((What & kScatterMomentum) != 0) momentum[k] += N * mv;
       if constexpr ((What & kScatterForce) != 0) force[k] += N * mb - vs * dN;
     });
-  });
+  }, std::span<const NodeArray>(written, static_cast<std::size_t>(count)));
 }
 
 }  // namespace matpoint

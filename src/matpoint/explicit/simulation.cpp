@@ -181,7 +181,7 @@ double stable_time_step(const Simulation<D>& sim) {
   const auto n = static_cast<std::ptrdiff_t>(sim.particles.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : fastest2)
   for (std::ptrdiff_t p = 0; p < n; ++p) fastest2 = std::max(fastest2, sim.particles.v[p].squaredNorm());
-  speed = std::max(speed, std::sqrt(fastest2));
+  speed = sim.comm.max(std::max(speed, std::sqrt(fastest2)));  // every rank of a decomposed run: one dt
   const double h = sim.grid.min_cell_size();
   double dt = sim.solver.courant * h / speed;
   // Explicit conduction: forward Euler on the lumped capacity is stable for dt < 2 / lambda_max.

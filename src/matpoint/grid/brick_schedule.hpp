@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "matpoint/core/types.hpp"
@@ -24,6 +25,28 @@
 #endif
 
 namespace matpoint {
+
+/// A node array that a particle-to-grid sum writes: `width` doubles per node, node i's at
+/// data[i * width ..]. The brick order hands these over between colours in a decomposed run.
+struct NodeArray {
+  double* data;
+  int width;
+};
+
+/// What a decomposed run adds to the brick order (parallel/colour_hand_off.hpp): the ranks agree
+/// on how far the stencils reach, and between two colours they pass on the running sums of the
+/// nodes that another rank stores too. Called once per colour, not per particle.
+class BrickBoundary {
+ public:
+  BrickBoundary() = default;
+  BrickBoundary(const BrickBoundary&) = delete;
+  BrickBoundary& operator=(const BrickBoundary&) = delete;
+  virtual ~BrickBoundary() = default;
+  /// Replaces this rank's reach by the one every rank uses (a collective, once per step).
+  virtual void agree_reach(int& below, int& above) = 0;
+  /// After colour `colour` of a sum over `arrays` (a collective, once per colour).
+  virtual void after_colour(int colour, const NodeArray* arrays, int count) const = 0;
+};
 
 template <int D>
 class BrickSchedule {
@@ -66,8 +89,8 @@ class BrickSchedule {
   /// colour. A particle's stencil reaches at most `below` nodes below its cell's lowest node and
   /// `above` nodes above it, along any axis (1 and 2 for the quadratic B-spline).
   void finish(int below, int above) {
-    const int reach = below + above;  // bricks m apart: (m - 1) B >= below + above keeps them apart
-    colours_per_axis_ = 2 + std::max(0, (reach - 1) / kNarrowestBrick);
+    if (boundary != nullptr) boundary->agree_reach(below, above);
+    colours_per_axis_ = colours_per_axis_for(below, above);
     const auto n = static_cast<std::int32_t>(brick_of_.size());
     // A stable counting sort by brick. sort_by_cell keeps the storage brick-major, so the bricks
     // come in runs: each run is counted and placed at once (a counter per particle would be a
@@ -83,6 +106,29 @@ class BrickSchedule {
       fill_[b] += end - begin;
     });
     group_by_colour();
+  }
+
+  /// Colours per axis m when stencils reach `below` and `above` nodes past a particle's cell:
+  /// bricks m apart along an axis are (m - 1) B cells apart, enough when (m - 1) B >= below + above.
+  [[nodiscard]] static int colours_per_axis_for(int below, int above) {
+    return 2 + std::max(0, (below + above - 1) / kNarrowestBrick);
+  }
+
+  /// Reorders the particles of the bricks that hold particles of storage index >= sorted_prefix
+  /// by (key, id): a decomposed run appends the particles that arrive from other ranks after the
+  /// ones sorted at the last sort_by_cell (which are in (key, id) order already, key = the
+  /// brick-major cell at that sort), so that every brick visits its particles in the order the
+  /// serial run stores them (docs/scale-out.md §6).
+  void order_arrivals(const std::vector<Index>& key, const std::vector<long>& id, std::size_t sorted_prefix) {
+    if (sorted_prefix >= brick_of_.size()) return;
+    std::vector<std::int32_t> bricks;
+    for (std::size_t p = sorted_prefix; p < brick_of_.size(); ++p) bricks.push_back(brick_of_[p]);
+    std::sort(bricks.begin(), bricks.end());
+    bricks.erase(std::unique(bricks.begin(), bricks.end()), bricks.end());
+    const auto by_key = [&](std::int32_t a, std::int32_t b) {
+      return key[a] != key[b] ? key[a] < key[b] : id[a] < id[b];
+    };
+    for (const std::int32_t b : bricks) std::sort(order_.begin() + start_[b], order_.begin() + start_[b + 1], by_key);
   }
 
   [[nodiscard]] Index brick_of(std::size_t p) const { return brick_of_[p]; }
@@ -120,10 +166,12 @@ class BrickSchedule {
 
   /// Calls visit(p) for every particle, brick by brick, colour after colour; the bricks of one
   /// colour are shared among the threads (fewer than kParallelMinimum particles: one thread).
-  /// visit may add into any node of p's stencil without synchronisation.
+  /// visit may add into any node of p's stencil without synchronisation. `arrays`: the node
+  /// arrays visit adds into, which a decomposed run (`boundary` set) hands on between colours.
   template <class Visit>
-  void for_each_particle(Visit&& visit) const {
+  void for_each_particle(Visit&& visit, std::span<const NodeArray> arrays = {}) const {
     const bool threaded = static_cast<std::ptrdiff_t>(order_.size()) > kParallelMinimum;
+    const BrickBoundary* const shared = boundary;
 #pragma omp parallel if (threaded)
     for (int c = 0; c < colours(); ++c) {
 #pragma omp for schedule(dynamic, 1)
@@ -131,8 +179,16 @@ class BrickSchedule {
         const Index b = coloured_[k];
         for (Index q = start_[b]; q < start_[b + 1]; ++q) visit(static_cast<std::size_t>(order_[q]));
       }
+      if (shared != nullptr) {  // the master thread talks to the other ranks (MPI_THREAD_FUNNELED)
+#pragma omp master
+        shared->after_colour(c, arrays.data(), static_cast<int>(arrays.size()));
+#pragma omp barrier
+      }
     }
   }
+
+  /// Set by a decomposed run (parallel/colour_hand_off.hpp); null in a serial one.
+  BrickBoundary* boundary = nullptr;
 
  private:
   /// Calls fn(brick, begin, end) for each maximal run of consecutive particles in one brick.

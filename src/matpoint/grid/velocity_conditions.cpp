@@ -133,7 +133,7 @@ void VelocityConditions<D>::apply(std::vector<Vec<D>>& v, double t, const std::v
     else
       set = wall_entries_[k - entries_.size()].value;
     v[node][axis] += set;
-    if (mass && impulse && work) {  // this condition's share: m (v^(b) - its free component)
+    if (mass && impulse && work && counts(node)) {  // this condition's share: m (v^(b) - its free component)
       const double dp = (*mass)[node] * (set - free_[k]);
       (*impulse)[axis] += dp;
       *work += dp * set;

@@ -3,6 +3,7 @@
 // faces include the ghost node layers beyond the face.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "matpoint/core/types.hpp"
@@ -38,7 +39,7 @@ class VelocityConditions {
   void zero_constrained(std::vector<Vec<D>>& v, const std::vector<double>* mass = nullptr,
                         Vec<D>* impulse = nullptr, double* work = nullptr, double t = 0.0) const {
     auto zero = [&](Index node, int axis, double set) {
-      if (mass && impulse) {
+      if (mass && impulse && counts(node)) {
         const double dp = -(*mass)[node] * v[node][axis];
         (*impulse)[axis] += dp;
         if (work) *work += dp * set;
@@ -49,6 +50,12 @@ class VelocityConditions {
       zero(e.node, e.axis, e.function < 0 || !work ? 0.0 : functions_[e.function](t));
     for (const auto& e : wall_entries_) zero(e.node, e.axis, e.value);
   }
+
+  /// A decomposed run: impulse and work are added only for the nodes [begin, end) this rank owns,
+  /// so that a node two ranks store counts once when the ranks' sums are added (the velocities
+  /// are set on every node).
+  void count_only(Index begin, Index end) { counted_begin_ = begin, counted_end_ = end; }
+  [[nodiscard]] bool counts(Index node) const { return node >= counted_begin_ && node < counted_end_; }
 
   [[nodiscard]] bool has_walls() const { return !walls_.empty(); }
   [[nodiscard]] bool has_one_sided() const { return one_sided_; }
@@ -78,6 +85,7 @@ class VelocityConditions {
   [[nodiscard]] std::size_t size() const { return entries_.size() + wall_entries_.size(); }
 
  private:
+  Index counted_begin_ = 0, counted_end_ = std::numeric_limits<Index>::max();
   struct Entry {
     Index node;
     int axis;

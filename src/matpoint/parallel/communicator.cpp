@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #ifdef MATPOINT_HAS_PETSC
+#define OMPI_SKIP_MPICXX 1  // the C interface only (OpenMPI's C++ bindings warn under -Wextra)
 #include <mpi.h>
 #endif
 

@@ -274,10 +274,15 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
     }
     progress.update(sim.step, sim.time);
     if (checkpoints.due(sim.step)) save_checkpoint();
-    if ((interrupted = interrupt_signal()) != 0) break;
+    // A decomposed run stops on every rank when one rank got the signal (the ranks must agree).
+    interrupted = interrupt_signal();
+    if (sim.comm.distributed()) interrupted = static_cast<int>(sim.comm.max(static_cast<long>(interrupted)));
+    if (interrupted != 0) break;
   }
   const bool finished = result.exit_code == kExitOk && interrupted == 0;
-  if (checkpoints.step() != sim.step && (interrupted != 0 || (finished && spec.output.checkpoint.enabled())))
+  // (a decomposed run has no checkpoints yet: parallel/decomposable.hpp refuses output.checkpoint)
+  if (checkpoints.step() != sim.step && !sim.comm.distributed() &&
+      (interrupted != 0 || (finished && spec.output.checkpoint.enabled())))
     save_checkpoint();
   if (interrupted != 0) {
     result.exit_code = 128 + interrupted;

@@ -1,0 +1,165 @@
+// The particle-to-grid sums of a decomposed explicit run, equal to the serial run's bit for bit
+// (issue 23; docs/scale-out.md §6, "What stage 1 built").
+//
+// The serial scatter visits the bricks colour by colour (grid/brick_schedule.hpp): a node's value
+// is the running sum over the colours, and within a colour exactly one brick adds to it. Each rank
+// scatters the bricks it owns in the same colour order into its own copy of the grid. After colour
+// c, the brick of colour c that covers a node (at most one) has the node's current value on its
+// owner's copy; when another rank stores that node too, the owner sends it, and the other rank
+// overwrites its copy. Before every colour, therefore, every rank that stores a node holds the same
+// value, and after the last one the complete serial sum, added in the serial order. The lists of
+// which nodes go where depend only on the partition and the stencils' reach, so both sides build
+// them alike and the messages carry values only.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "matpoint/core/types.hpp"
+#include "matpoint/grid/brick_schedule.hpp"
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/parallel/communicator.hpp"
+#include "matpoint/parallel/slab_partition.hpp"
+
+namespace matpoint {
+
+template <int D>
+class ColourHandOff final : public BrickBoundary {
+ public:
+  ColourHandOff(const Grid<D>& grid, const SlabPartition<D>& partition, const Communicator& comm)
+      : grid_(grid), partition_(partition), comm_(comm) {}
+
+  /// The largest reach of any rank, never less than an earlier step's (so that the lists are
+  /// rebuilt only when a stencil grows); rebuilds the lists when it changed.
+  void agree_reach(int& below, int& above) override {
+    std::vector<int> reach{below, above, below_, above_};
+    comm_.max(reach);
+    below = std::max(reach[0], reach[2]);
+    above = std::max(reach[1], reach[3]);
+    if (below != below_ || above != above_ || peers_.empty()) build(below, above);
+  }
+
+  void after_colour(int colour, const NodeArray* arrays, int count) const override {
+    const auto& peers = peers_[static_cast<std::size_t>(colour)];
+    if (peers.empty()) return;
+    int width = 0;
+    for (int k = 0; k < count; ++k) width += arrays[k].width;
+    std::vector<Communicator::Message> send, receive;
+    buffers_.resize(2 * peers.size());
+    for (std::size_t j = 0; j < peers.size(); ++j) {
+      const Peer& peer = peers[j];
+      auto& out = buffers_[2 * j];
+      auto& in = buffers_[2 * j + 1];
+      out.resize(peer.send.size() * static_cast<std::size_t>(width));
+      in.resize(peer.receive.size() * static_cast<std::size_t>(width));
+      double* o = out.data();
+      for (const Index node : peer.send)
+        for (int k = 0; k < count; ++k)
+          for (int w = 0; w < arrays[k].width; ++w) *o++ = arrays[k].data[node * arrays[k].width + w];
+      if (!out.empty()) send.push_back({peer.rank, out.data(), out.size()});
+      if (!in.empty()) receive.push_back({peer.rank, in.data(), in.size()});
+    }
+    comm_.exchange(send, receive);
+    for (std::size_t j = 0; j < peers.size(); ++j) {
+      const double* i = buffers_[2 * j + 1].data();
+      for (const Index node : peers[j].receive)
+        for (int k = 0; k < count; ++k)
+          for (int w = 0; w < arrays[k].width; ++w) arrays[k].data[node * arrays[k].width + w] = *i++;
+    }
+  }
+
+  /// Nodes this rank sends to / receives from other ranks after each colour (for the tests).
+  [[nodiscard]] std::size_t send_count(int colour) const {
+    std::size_t n = 0;
+    for (const auto& peer : peers_[static_cast<std::size_t>(colour)]) n += peer.send.size();
+    return n;
+  }
+
+ private:
+  struct Peer {
+    int rank;
+    std::vector<Index> send, receive;  // flat node indices, ascending
+  };
+
+  /// Along axis a, the brick whose nodes [k B - below, end_k - 1 + above] hold node coordinate n
+  /// and whose coordinate is c_a modulo m; -1 for none (the colouring makes it unique).
+  [[nodiscard]] int covering_brick(int a, int n, int c_a, int m) const {
+    constexpr auto B = [](int axis) { return BrickSchedule<D>::brick_cells(axis); };
+    const int bricks = BrickSchedule<D>::bricks_along(grid_, a);
+    const int first = std::max(0, (n - above_) / B(a) - 1), last = std::min(bricks - 1, (n + below_) / B(a));
+    for (int k = first; k <= last; ++k) {
+      const int end = std::min((k + 1) * B(a), grid_.cells[a]);
+      if (k % m == c_a && n >= k * B(a) - below_ && n <= end - 1 + above_) return k;
+    }
+    return -1;
+  }
+
+  void build(int below, int above) {
+    below_ = below, above_ = above;
+    const int m = BrickSchedule<D>::colours_per_axis_for(below, above);
+    int colours = 1;
+    for (int a = 0; a < D; ++a) colours *= m;
+    peers_.assign(static_cast<std::size_t>(colours), {});
+    constexpr int kCut = SlabPartition<D>::kAxis;
+    const int me = comm_.rank();
+    const auto mine = partition_.stored_nodes_of(me, below, above);
+    for (int colour = 0; colour < colours; ++colour) {
+      std::array<int, D> c{};
+      for (int a = 0, rest = colour; a < D; ++a, rest /= m) c[a] = rest % m;
+      // Per axis other than the cut, the covering brick of every node coordinate (or -1).
+      std::array<std::vector<int>, D> cover;
+      for (int a = 0; a < D; ++a) {
+        if (a == kCut) continue;
+        cover[a].resize(static_cast<std::size_t>(grid_.cells[a]) + 1);
+        for (int n = 0; n <= grid_.cells[a]; ++n) cover[a][static_cast<std::size_t>(n)] = covering_brick(a, n, c[a], m);
+      }
+      for (int r = 0; r < comm_.size(); ++r) {
+        if (r == me) continue;
+        const auto theirs = partition_.stored_nodes_of(r, below, above);
+        Peer peer{r, {}, {}};
+        for (int layer = std::max(mine.first, theirs.first); layer < std::min(mine.second, theirs.second); ++layer) {
+          const int k = covering_brick(kCut, layer, c[kCut], m);
+          if (k < 0) continue;
+          const int owner = partition_.owner_of_layer(k);
+          if (owner != me && owner != r) continue;
+          auto& list = owner == me ? peer.send : peer.receive;
+          add_layer_nodes(layer, cover, list);
+        }
+        if (!peer.send.empty() || !peer.receive.empty()) peers_[static_cast<std::size_t>(colour)].push_back(std::move(peer));
+      }
+    }
+  }
+
+  /// Appends, in ascending flat index, the nodes of node layer `layer` (along the cut axis) that a
+  /// brick of the colour covers along every other axis.
+  void add_layer_nodes(int layer, const std::array<std::vector<int>, D>& cover, std::vector<Index>& list) const {
+    constexpr int kCut = SlabPartition<D>::kAxis;
+    std::array<int, D> ijk{};
+    ijk[kCut] = layer;
+    if constexpr (D == 1) {
+      list.push_back(grid_.node_index(ijk));
+    } else if constexpr (D == 2) {
+      for (int i = 0; i <= grid_.cells[0]; ++i)
+        if (cover[0][static_cast<std::size_t>(i)] >= 0) ijk[0] = i, list.push_back(grid_.node_index(ijk));
+    } else {
+      for (int j = 0; j <= grid_.cells[1]; ++j) {
+        if (cover[1][static_cast<std::size_t>(j)] < 0) continue;
+        ijk[1] = j;
+        for (int i = 0; i <= grid_.cells[0]; ++i)
+          if (cover[0][static_cast<std::size_t>(i)] >= 0) ijk[0] = i, list.push_back(grid_.node_index(ijk));
+      }
+    }
+  }
+
+  const Grid<D>& grid_;
+  const SlabPartition<D>& partition_;
+  Communicator comm_;
+  int below_ = -1, above_ = -1;
+  std::vector<std::vector<Peer>> peers_;  // by colour
+  mutable std::vector<std::vector<double>> buffers_;
+};
+
+}  // namespace matpoint

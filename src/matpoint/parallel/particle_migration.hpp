@@ -1,0 +1,150 @@
+// Particles between the ranks of a decomposed explicit run (issue 23; docs/scale-out.md §5, §6).
+//
+// A particle lives on the rank that owns its cell's brick layer (parallel/slab_partition.hpp). At
+// the end of every step the particles that moved into another rank's cells are packed (every array
+// of for_each_array, so none is left behind), sent, and appended by the receivers; the departed are
+// removed by a stable compaction. The scatter must visit a brick's particles in the order the
+// serial run stores them: (brick-major cell at the last sort_by_cell, id). The particles sorted at
+// the last sort keep that order through the compaction; the arrivals come after them, so each
+// particle carries its sort key, and the brick order puts the arrivals in place
+// (BrickSchedule::order_arrivals).
+#pragma once
+
+#include <cstddef>
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
+#include <vector>
+
+#include "matpoint/core/types.hpp"
+#include "matpoint/grid/brick_schedule.hpp"
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/parallel/communicator.hpp"
+#include "matpoint/parallel/slab_partition.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+namespace matpoint {
+
+template <int D>
+class ParticleMigration {
+ public:
+  ParticleMigration(const Grid<D>& grid, const SlabPartition<D>& partition, const Communicator& comm)
+      : grid_(grid), partition_(partition), comm_(comm) {}
+
+  /// Keeps this rank's particles of a set that every rank generated whole (storage order kept).
+  void keep_own(ParticleSet<D>& ps) {
+    std::vector<char> keep(ps.size());
+    for (std::size_t p = 0; p < ps.size(); ++p)
+      keep[p] = static_cast<char>(partition_.owner_of_cell(grid_.cell_coords(ps.x[p])) == comm_.rank());
+    compact(ps, keep);
+    sorted(ps);
+  }
+
+  /// After sort_by_cell: every particle is in (key, id) order, with key its present brick-major cell.
+  void sorted(const ParticleSet<D>& ps) {
+    key_.resize(ps.size());
+    for (std::size_t p = 0; p < ps.size(); ++p)
+      key_[p] = BrickSchedule<D>::brick_major_cell(grid_, grid_.cell_coords(ps.x[p]));
+    sorted_prefix_ = ps.size();
+  }
+
+  /// Sends the particles whose cells another rank owns, appends those that arrive. A collective.
+  void migrate(ParticleSet<D>& ps) {
+    const int P = comm_.size(), me = comm_.rank();
+    std::vector<std::vector<std::size_t>> leaving(static_cast<std::size_t>(P));
+    std::vector<char> keep(ps.size(), 1);
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      const int owner = partition_.owner_of_cell(grid_.cell_coords(ps.x[p]));
+      if (owner == me) continue;
+      keep[p] = 0;
+      leaving[static_cast<std::size_t>(owner)].push_back(p);
+    }
+    std::vector<std::vector<char>> out(static_cast<std::size_t>(P));
+    for (int r = 0; r < P; ++r)
+      if (r != me && !leaving[static_cast<std::size_t>(r)].empty())
+        out[static_cast<std::size_t>(r)] = pack(ps, leaving[static_cast<std::size_t>(r)]);
+    const auto arrived = comm_.exchange(out);
+    std::size_t survivors_in_prefix = 0;
+    for (std::size_t p = 0; p < sorted_prefix_; ++p) survivors_in_prefix += keep[p] != 0 ? 1 : 0;
+    compact(ps, keep);
+    compact_keys(keep);
+    sorted_prefix_ = survivors_in_prefix;
+    for (int r = 0; r < P; ++r)
+      if (r != me && !arrived[static_cast<std::size_t>(r)].empty()) unpack(ps, arrived[static_cast<std::size_t>(r)]);
+  }
+
+  [[nodiscard]] const std::vector<Index>& keys() const { return key_; }
+  [[nodiscard]] std::size_t sorted_prefix() const { return sorted_prefix_; }
+
+ private:
+  /// Removes the particles with keep[p] == 0, keeping the order of the others.
+  static void compact(ParticleSet<D>& ps, const std::vector<char>& keep) {
+    for_each_array(ps, [&keep](const char*, auto& array, std::size_t count) {
+      std::size_t to = 0;
+      for (std::size_t p = 0; p < keep.size(); ++p) {
+        if (keep[p] == 0) continue;
+        if (to != p)
+          for (std::size_t k = 0; k < count; ++k) array[to * count + k] = array[p * count + k];
+        ++to;
+      }
+      array.resize(to * count);
+    });
+  }
+
+  void compact_keys(const std::vector<char>& keep) {
+    std::size_t to = 0;
+    for (std::size_t p = 0; p < keep.size(); ++p)
+      if (keep[p] != 0) key_[to++] = key_[p];
+    key_.resize(to);
+  }
+
+  /// The particles `which`: their count, then each array of for_each_array in its order, then the keys.
+  std::vector<char> pack(const ParticleSet<D>& ps, const std::vector<std::size_t>& which) const {
+    std::vector<char> bytes;
+    append(bytes, static_cast<std::size_t>(which.size()));
+    for_each_array(ps, [&](const char*, const auto& array, std::size_t count) {
+      for (const std::size_t p : which)
+        for (std::size_t k = 0; k < count; ++k) append(bytes, array[p * count + k]);
+    });
+    for (const std::size_t p : which) append(bytes, key_[p]);
+    return bytes;
+  }
+
+  void unpack(ParticleSet<D>& ps, const std::vector<char>& bytes) {
+    std::size_t at = 0;
+    const auto n = take<std::size_t>(bytes, at);
+    for_each_array(ps, [&](const char*, auto& array, std::size_t count) {
+      using T = typename std::remove_reference_t<decltype(array)>::value_type;
+      for (std::size_t q = 0; q < n * count; ++q) array.push_back(take<T>(bytes, at));
+    });
+    for (std::size_t q = 0; q < n; ++q) key_.push_back(take<Index>(bytes, at));
+    if (at != bytes.size()) throw std::logic_error("particle migration: a message of unexpected length");
+  }
+
+  template <class T>
+  static void append(std::vector<char>& bytes, const T& value) {
+    // Eigen's fixed-size vectors and matrices are plain arrays of doubles, though not formally
+    // trivially copyable (they declare copy constructors); every particle array is one of those,
+    // an array of them, or a number.
+    static_assert(std::is_standard_layout_v<T>);
+    const std::size_t at = bytes.size();
+    bytes.resize(at + sizeof(T));
+    std::memcpy(bytes.data() + at, &value, sizeof(T));
+  }
+  template <class T>
+  static T take(const std::vector<char>& bytes, std::size_t& at) {
+    if (at + sizeof(T) > bytes.size()) throw std::logic_error("particle migration: a message too short");
+    T value;
+    std::memcpy(static_cast<void*>(&value), bytes.data() + at, sizeof(T));
+    at += sizeof(T);
+    return value;
+  }
+
+  const Grid<D>& grid_;
+  const SlabPartition<D>& partition_;
+  Communicator comm_;
+  std::vector<Index> key_;          // brick-major cell at the last sort (or on the sender's side)
+  std::size_t sorted_prefix_ = 0;   // particles [0, sorted_prefix_) are in (key, id) order
+};
+
+}  // namespace matpoint

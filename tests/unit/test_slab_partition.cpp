@@ -1,0 +1,71 @@
+// The slab partition of a decomposed explicit run (parallel/slab_partition.hpp, issue 23): every
+// cell and every node has exactly one owner, the cut follows the particle count, and a rank's
+// stored nodes cover every node its particles' stencils reach. Expected values from the
+// definitions: bricks of 8 cells along y (2-D), a quadratic B-spline reaches 1 node below and 2
+// above a particle's cell (docs/scale-out.md §3).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <vector>
+
+#include "matpoint/parallel/slab_partition.hpp"
+
+namespace {
+
+using namespace matpoint;
+
+Grid<2> grid_of(int nx, int ny) { return Grid<2>(Vec<2>::Zero(), Vec<2>::Ones(), {nx, ny}, 0); }
+
+TEST(SlabPartition, EveryCellLayerAndNodeLayerHasOneOwner) {
+  const Grid<2> grid = grid_of(10, 45);  // 6 brick layers, the last one 5 cells thick
+  std::vector<std::array<int, 2>> cells;
+  for (int j = 0; j < 45; ++j) cells.push_back({0, j});
+  for (const int ranks : {1, 2, 3, 4, 6}) {
+    const auto slabs = SlabPartition<2>::balanced(grid, cells, ranks);
+    std::vector<int> cell_owners(45, 0), node_owners(46, 0);
+    for (int r = 0; r < ranks; ++r) {
+      const auto [c0, c1] = slabs.cells_of(r);
+      for (int j = c0; j < c1; ++j) {
+        ++cell_owners[static_cast<std::size_t>(j)];
+        EXPECT_EQ(slabs.owner_of_cell({3, j}), r);
+      }
+      const auto [n0, n1] = slabs.owned_nodes_of(r);
+      for (int j = n0; j < n1; ++j) ++node_owners[static_cast<std::size_t>(j)];
+    }
+    for (int j = 0; j < 45; ++j) EXPECT_EQ(cell_owners[static_cast<std::size_t>(j)], 1) << ranks << " ranks, cell " << j;
+    for (int j = 0; j <= 45; ++j) EXPECT_EQ(node_owners[static_cast<std::size_t>(j)], 1) << ranks << " ranks, node " << j;
+  }
+}
+
+TEST(SlabPartition, CutsWhereHalfTheParticlesLie) {
+  // 100 particles in brick layer 0 (cells 0-7), 100 spread over layers 1-4: two ranks split
+  // between layer 0 and the rest; the uniform layout splits in the middle layer boundary.
+  const Grid<2> grid = grid_of(8, 40);
+  std::vector<std::array<int, 2>> cells;
+  for (int k = 0; k < 100; ++k) cells.push_back({0, k % 8});
+  for (int k = 0; k < 100; ++k) cells.push_back({0, 8 + k % 32});
+  const auto two = SlabPartition<2>::balanced(grid, cells, 2);
+  EXPECT_EQ(two.cells_of(0), std::make_pair(0, 8));
+  EXPECT_EQ(two.cells_of(1), std::make_pair(8, 40));
+  std::vector<std::array<int, 2>> uniform;
+  for (int j = 0; j < 32; ++j) uniform.push_back({0, j});
+  const auto halves = SlabPartition<2>::balanced(grid_of(8, 32), uniform, 2);
+  EXPECT_EQ(halves.cells_of(0), std::make_pair(0, 16));
+}
+
+TEST(SlabPartition, StoredNodesCoverTheStencilsOfTheOwnedCells) {
+  const Grid<2> grid = grid_of(8, 40);
+  std::vector<std::array<int, 2>> cells;
+  for (int j = 0; j < 40; ++j) cells.push_back({0, j});
+  const auto slabs = SlabPartition<2>::balanced(grid, cells, 3);
+  for (int r = 0; r < 3; ++r) {
+    const auto [c0, c1] = slabs.cells_of(r);
+    const auto [s0, s1] = slabs.stored_nodes_of(r, /*below=*/1, /*above=*/2);
+    EXPECT_EQ(s0, std::max(0, c0 - 1));
+    EXPECT_EQ(s1, std::min(41, c1 + 2));  // the last cell c1 - 1 reaches node c1 + 1
+  }
+  EXPECT_EQ(SlabPartition<2>::balanced(grid, cells, 8).stored_nodes_of(7, 1, 2), std::make_pair(0, 0))
+      << "a rank without cells (5 brick layers, 8 ranks) stores no node";
+}
+
+}  // namespace
