@@ -48,6 +48,7 @@ Simulation<2> whole_state() {
   auto& ps = sim.particles;
   for (std::size_t p = 0; p < ps.size(); ++p) {
     const double s = static_cast<double>(ps.id[p]);
+    ps.mass[p] *= 1 + 0.1 * std::sin(0.9 * s);  // unequal: no mass front falls exactly on a particle
     ps.v[p] += Vec<2>(0.01 * std::sin(s), 0.02 * std::cos(1.3 * s));
     ps.x[p] += Vec<2>(0.001 * std::cos(s), 0.002 * std::sin(0.7 * s));
     ps.F[p] << 1 + 0.01 * std::sin(2 * s), 0.003 * std::cos(s), 0.002 * std::sin(3 * s),
@@ -92,11 +93,14 @@ Simulation<2> rank_part(const Simulation<2>& whole, const Communicator& comm) {
   return sim;
 }
 
-void expect_close(double a, double b, const char* what) {
-  EXPECT_LE(std::abs(a - b), 1e-14 * std::max(std::abs(a), std::abs(b))) << what << ": " << a << " vs " << b;
+/// Equal to 1e-14 relative; `scale`: of the terms summed, where they cancel (the total momentum).
+void expect_close(double a, double b, const char* what, double scale = 0.0) {
+  EXPECT_LE(std::abs(a - b), 1e-14 * std::max({std::abs(a), std::abs(b), scale}))
+      << what << ": " << a << " vs " << b;
 }
-void expect_close(const std::array<double, 3>& a, const std::array<double, 3>& b, const char* what) {
-  for (std::size_t k = 0; k < 3; ++k) expect_close(a[k], b[k], what);
+void expect_close(const std::array<double, 3>& a, const std::array<double, 3>& b, const char* what,
+                  double scale = 0.0) {
+  for (std::size_t k = 0; k < 3; ++k) expect_close(a[k], b[k], what, scale);
 }
 
 TEST(DistributedReports, HistoryRowEqualsTheWholeSets) {
@@ -115,7 +119,10 @@ TEST(DistributedReports, HistoryRowEqualsTheWholeSets) {
   EXPECT_EQ(a.friction_work, b.friction_work);
   EXPECT_EQ(a.external_impulse, b.external_impulse);
   EXPECT_EQ(a.grid_momentum_difference, b.grid_momentum_difference);
-  expect_close(a.momentum, b.momentum, "momentum");
+  // the bodies' momenta nearly cancel: the scale of the round-off is theirs
+  double body_scale = 0.0;
+  for (const auto& m : a.body_momentum) body_scale = std::max({body_scale, std::abs(m[0]), std::abs(m[1])});
+  expect_close(a.momentum, b.momentum, "momentum", body_scale);
   EXPECT_EQ(a.min_jacobian, b.min_jacobian);
   expect_close(a.rms_velocity_change, b.rms_velocity_change, "rms velocity change");
   for (int k = 0; k < 2; ++k) {
@@ -146,7 +153,9 @@ TEST(DistributedReports, SummaryFactsEqualTheWholeSets) {
   run_loop_detail::add_state_facts(part, b);
   EXPECT_EQ(a.particles, whole.particles.size());
   EXPECT_EQ(b.particles, a.particles);
-  EXPECT_EQ(b.final_reach, a.final_reach);
+  EXPECT_EQ(b.final_reach[0], a.final_reach[0]);
+  EXPECT_EQ(b.final_reach[1], a.final_reach[1]);
+  EXPECT_TRUE(std::isnan(b.final_reach[2]));      // 2-D: none
   EXPECT_EQ(b.final_runout_x, a.final_runout_x);  // the same particle's x
   EXPECT_EQ(shock_plateau_stress(b.final_stress_xx), shock_plateau_stress(a.final_stress_xx));
   EXPECT_TRUE(std::isfinite(a.final_runout_x));
@@ -206,12 +215,15 @@ std::string read(const std::filesystem::path& file) {
   return text.str();
 }
 
-// Each rank writes its piece, rank 0 the .pvtu naming them, results.pvd and history.csv.
+// Each rank writes its piece (the last one of several holds no particle), rank 0 the .pvtu naming
+// them, results.pvd and history.csv.
 TEST(DistributedReports, EachRankWritesItsPieceAndRankZeroTheIndex) {
   const Communicator comm = Communicator::world();
   Spec spec = parse_spec(kInput);
   spec.output.particles = true;
-  const Simulation<2> part = rank_part(whole_state(), comm);
+  Simulation<2> part = rank_part(whole_state(), comm);
+  if (comm.size() > 1 && comm.rank() == comm.size() - 1)  // a rank without particles writes a piece too
+    for_each_array(part.particles, [](const char*, auto& array, std::size_t) { array.clear(); });
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / "matpoint_test_distributed_outputs";
   if (comm.rank() == 0) {
