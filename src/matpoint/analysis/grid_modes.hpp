@@ -9,9 +9,11 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/parallel/communicator.hpp"
 
 namespace matpoint {
 
@@ -19,12 +21,23 @@ struct GridModes {
   double checkerboard_velocity = 0.0, rms_velocity = 0.0, hourglass_energy = 0.0;
 };
 
+/// The nodes a rank counts in a decomposed run (every rank stores the whole grid, and a node near
+/// a rank boundary is stored by two ranks with the same values): the flat node indices
+/// [begin, end) it owns (Simulation::owns_node), and the ranks to sum over. The default: one rank
+/// that owns every node.
+struct NodeOwnership {
+  Communicator comm;
+  Index begin = 0, end = std::numeric_limits<Index>::max();
+  [[nodiscard]] bool owns(Index node) const { return node >= begin && node < end; }
+};
+
+/// Every rank calls it in a decomposed run (a collective): the sums run over the owned nodes (a
+/// cell counts on the rank that owns its lowest node, which must hold complete values on the
+/// cell's other corners) and are added over the ranks, so every rank gets the same modes.
 template <int D>
 GridModes measure_grid_modes(const Grid<D>& grid, const std::vector<double>& mass,
-                             const std::vector<Vec<D>>& velocity) {
+                             const std::vector<Vec<D>>& velocity, const NodeOwnership& owned = {}) {
   GridModes g;
-  double total = 0.0, energy = 0.0;
-  Vec<D> checker = Vec<D>::Zero();
   auto sign = [&](const std::array<int, D>& ijk) {
     int sum = 0;
     for (int a = 0; a < D; ++a) sum += ijk[a];
@@ -32,16 +45,21 @@ GridModes measure_grid_modes(const Grid<D>& grid, const std::vector<double>& mas
   };
   const Index n = grid.node_count;
   const Index fields = static_cast<Index>(mass.size()) / n;
+  // This rank's raw sums: sum m, sum m |v|^2, sum s m v (D), the hourglass energy.
+  std::vector<double> sums(3 + D, 0.0);
+  double& total = sums[0];
+  double& energy = sums[1];
+  Vec<D> checker = Vec<D>::Zero();
   for (Index i = 0; i < fields * n; ++i) {
+    if (!owned.owns(i % n)) continue;
     total += mass[i];
     energy += mass[i] * velocity[i].squaredNorm();
     checker += sign(grid.node_coords(i % n)) * mass[i] * velocity[i];
   }
-  if (!(total > 0.0)) return g;
-  g.checkerboard_velocity = checker.norm() / total;
-  g.rms_velocity = std::sqrt(energy / total);
+  double hourglass = 0.0;
   for (Index f = 0; f < fields; ++f)
     for (Index i = 0; i < n; ++i) {  // cells by their lowest node
+      if (!owned.owns(i)) continue;
       const auto ijk = grid.node_coords(i);
       bool interior = true;
       for (int a = 0; a < D; ++a) interior = interior && ijk[a] + 1 < grid.nodes[a] - grid.ghost;
@@ -56,8 +74,16 @@ GridModes measure_grid_modes(const Grid<D>& grid, const std::vector<double>& mas
         hg += sign(corner) * velocity[k];
       }
       const double scale = 1.0 / (1 << D);
-      g.hourglass_energy += 0.5 * (m * scale) * (hg * scale).squaredNorm();
+      hourglass += 0.5 * (m * scale) * (hg * scale).squaredNorm();
     }
+  for (int a = 0; a < D; ++a) sums[2 + a] = checker[a];
+  sums[2 + D] = hourglass;
+  owned.comm.sum(sums);  // rank order: the same bits on every rank; one rank: unchanged
+  if (!(total > 0.0)) return g;
+  for (int a = 0; a < D; ++a) checker[a] = sums[2 + a];
+  g.checkerboard_velocity = checker.norm() / total;
+  g.rms_velocity = std::sqrt(energy / total);
+  g.hourglass_energy = sums[2 + D];
   return g;
 }
 

@@ -8,8 +8,11 @@
 #include <cstdint>
 #include <cstring>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
+#include <utility>
 
 #include "matpoint/io/atomic_file.hpp"
 #include "matpoint/material/hencky_plasticity.hpp"
@@ -193,7 +196,8 @@ std::string particles_vtu(const ParticleSet<D>& ps, const std::vector<std::strin
                                return ps.plastic(p) ? ps.state[p * ps.state_stride + kEquivalentPlasticStrain]
                                                     : 0.0;
                              }));
-  if (wanted(fields, "temperature") && !ps.temperature.empty())
+  // has_temperature: a rank without particles declares the array as the others do
+  if (wanted(fields, "temperature") && (ps.has_temperature || !ps.temperature.empty()))
     point_data << data.array("temperature", "Float64", 1, ps.temperature);
   if (wanted(fields, "yield_state")) {
     std::vector<std::int32_t> state(n, 0);
@@ -277,7 +281,74 @@ void PvdCollection::set_companion_prefix(std::string prefix) {
   if (!entries_.empty()) write();
 }
 
+namespace {
+
+/// The text of the XML part of a .vtu (before the appended binary data).
+std::string_view xml_head(const std::string& vtu) {
+  const std::size_t end = vtu.find("<AppendedData");
+  return std::string_view(vtu).substr(0, end == std::string::npos ? vtu.size() : end);
+}
+
+/// The <PDataArray .../> declarations of the DataArray elements inside `<section>`...`</section>`
+/// of `head`, each with the DataArray's attributes except where its data lie (format, offset);
+/// nullopt when the piece has no such section.
+std::optional<std::string> declarations(std::string_view head, const std::string& section) {
+  const std::string open = "<" + section + ">", close = "</" + section + ">";
+  const std::size_t begin = head.find(open);
+  if (begin == std::string_view::npos) return std::nullopt;
+  const std::size_t end = head.find(close, begin);
+  if (end == std::string_view::npos) throw std::invalid_argument("pvtu_file: a piece without " + close);
+  const std::string_view body = head.substr(begin + open.size(), end - begin - open.size());
+  std::string out;
+  for (std::size_t at = body.find("<DataArray"); at != std::string_view::npos;
+       at = body.find("<DataArray", at + 1)) {
+    const std::size_t stop = body.find('>', at);
+    if (stop == std::string_view::npos) throw std::invalid_argument("pvtu_file: an unterminated DataArray");
+    std::string_view element = body.substr(at + 10, stop - at - 10);  // after "<DataArray"
+    out += "      <PDataArray";
+    // attributes: name="value", value without quotes (our writers' XML has no escapes)
+    for (std::size_t k = 0;;) {
+      const std::size_t eq = element.find("=\"", k);
+      if (eq == std::string_view::npos) break;
+      const std::size_t name_begin = element.find_last_of(" \t\n", eq) + 1;
+      const std::size_t value_end = element.find('"', eq + 2);
+      if (value_end == std::string_view::npos)
+        throw std::invalid_argument("pvtu_file: an unquoted attribute");
+      const std::string_view name = element.substr(name_begin, eq - name_begin);
+      if (name != "format" && name != "offset") {
+        out += ' ';
+        out.append(element.substr(name_begin, value_end + 1 - name_begin));
+      }
+      k = value_end + 1;
+    }
+    out += "/>\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string pvtu_file(const std::string& piece_vtu, const std::vector<std::string>& piece_files) {
+  const std::string_view head = xml_head(piece_vtu);
+  if (head.find("type=\"UnstructuredGrid\"") == std::string_view::npos)
+    throw std::invalid_argument("pvtu_file: the piece is not a VTK UnstructuredGrid file");
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n"
+         "  <PUnstructuredGrid GhostLevel=\"0\">\n";
+  for (const auto& [section, parallel] : {std::pair<const char*, const char*>{"PointData", "PPointData"},
+                                          {"CellData", "PCellData"},
+                                          {"Points", "PPoints"}})
+    if (const auto arrays = declarations(head, section))
+      out << "    <" << parallel << ">\n" << *arrays << "    </" << parallel << ">\n";
+  for (const auto& file : piece_files) out << "    <Piece Source=\"" << file << "\"/>\n";
+  out << "  </PUnstructuredGrid>\n</VTKFile>\n";
+  return out.str();
+}
+
 void PvdCollection::write() const {
+  if (!writes_) return;
   std::ostringstream out;
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   out << std::setprecision(17);

@@ -25,10 +25,20 @@ template <int D>
 std::string domains_vtu(const std::vector<typename ParticleSet<D>::Corners>& domains,
                         const ParticleSet<D>& particles);
 
-/// A growing ParaView collection, rewritten atomically after each added file.
+/// The .pvtu text (VTK XML PUnstructuredGrid) of a dataset written in pieces, one .vtu per MPI
+/// rank (docs/output.md "Runs on several MPI ranks"): it lists `piece_files` (names relative to the
+/// .pvtu's folder) and declares the point data, cell data and points arrays of `piece_vtu`, the
+/// text of one piece (particles_vtu or domains_vtu), with their names, types, numbers of
+/// components and component names. Every piece of one output declares the same arrays (they do
+/// not depend on the particles a rank holds, none included).
+std::string pvtu_file(const std::string& piece_vtu, const std::vector<std::string>& piece_files);
+
+/// A growing ParaView collection, rewritten atomically after each added file. `writes` false:
+/// keeps the entries without writing the file (the MPI ranks other than rank 0).
 class PvdCollection {
  public:
-  explicit PvdCollection(std::filesystem::path file) : file_(std::move(file)) {}
+  explicit PvdCollection(std::filesystem::path file, bool writes = true)
+      : file_(std::move(file)), writes_(writes) {}
   void add(double time, const std::string& dataset_file);
   /// The (time, file) entries so far; restore() replaces them (a restart) and rewrites the file.
   [[nodiscard]] const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
@@ -44,6 +54,7 @@ class PvdCollection {
  private:
   void write() const;
   std::filesystem::path file_;
+  bool writes_ = true;
   std::vector<std::pair<double, std::string>> entries_;
   std::string static_part_;
   std::string companion_prefix_;

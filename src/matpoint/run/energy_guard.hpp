@@ -12,6 +12,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "matpoint/analysis/history.hpp"
 #include "matpoint/core/errors.hpp"
@@ -52,12 +53,15 @@ class EnergyGuard {
   void after_step(const Simulation<D>& sim, bool recorded, const OtherEnergy& other) {
     if (!max_growth_ || (!recorded && sim.step % kInterval != 0)) return;
     const auto [other_kinetic, other_strain, other_work] = other();
-    const double external = sim.external_work + other_work;
+    // This rank's particle sums and its part of the accumulated works (one rank: the whole),
+    // added over the ranks in rank order: every rank decides on the same bits (a collective).
+    std::vector<double> sums{kinetic_energy(sim.particles), strain_energy<D>(sim.materials, sim.particles),
+                             plastic_work<D>(sim.particles), sim.friction_work, sim.external_work};
+    sim.comm.sum(sums);
+    const double external = sums[4] + other_work;
     if (recorded) scale_.external_work = std::max(scale_.external_work, std::abs(external));
     const double scale = std::max(scale_.value(), std::abs(external));
-    const double b = balance(kinetic_energy(sim.particles) + other_kinetic,
-                             strain_energy<D>(sim.materials, sim.particles) + other_strain,
-                             sim.friction_work + plastic_work<D>(sim.particles), external);
+    const double b = balance(sums[0] + other_kinetic, sums[1] + other_strain, sums[3] + sums[2], external);
     if (!(scale > 0.0)) return;  // nothing given, nothing received: nothing to compare with
     const double growth = (b - balance0_) / scale;
     if (growth <= *max_growth_ && std::isfinite(b)) return;
@@ -81,17 +85,28 @@ class EnergyGuard {
     for (std::ptrdiff_t p = 0; p < n; ++p) k += 0.5 * ps.mass[p] * ps.v[p].squaredNorm();
     return k;
   }
+  /// The fastest particle of all ranks (a collective in a decomposed run: the rank holding it
+  /// sends the words); "" when there is none.
   template <int D>
   static std::string fastest_particle(const Simulation<D>& sim) {
     const auto& ps = sim.particles;
-    std::size_t fastest = 0;
-    for (std::size_t p = 1; p < ps.size(); ++p)
-      if (!(ps.v[p].squaredNorm() <= ps.v[fastest].squaredNorm())) fastest = p;
     std::ostringstream entity;
-    entity << "particle " << ps.id[fastest] << " (body " << ps.body[fastest]
-           << ", the fastest: |v| = " << ps.v[fastest].norm() << ") at x = (" << ps.x[fastest].transpose()
-           << ")";
-    return entity.str();
+    double speed = -1.0;  // none here
+    if (ps.size() > 0) {
+      std::size_t fastest = 0;
+      for (std::size_t p = 1; p < ps.size(); ++p)
+        if (!(ps.v[p].squaredNorm() <= ps.v[fastest].squaredNorm())) fastest = p;
+      speed = ps.v[fastest].squaredNorm();
+      entity << "particle " << ps.id[fastest] << " (body " << ps.body[fastest]
+             << ", the fastest: |v| = " << ps.v[fastest].norm() << ") at x = (" << ps.x[fastest].transpose()
+             << ")";
+    }
+    if (!sim.comm.distributed()) return entity.str();
+    const std::vector<double> speeds = sim.comm.all_gather(std::vector<double>{speed});
+    int holder = 0;  // the lowest rank with the fastest (NaN counts as the fastest, as above)
+    for (int r = 1; r < static_cast<int>(speeds.size()); ++r)
+      if (!(speeds[static_cast<std::size_t>(r)] <= speeds[static_cast<std::size_t>(holder)])) holder = r;
+    return sim.comm.broadcast(entity.str(), holder);
   }
 
   std::optional<double> max_growth_;

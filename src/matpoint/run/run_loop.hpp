@@ -24,9 +24,11 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -126,18 +128,80 @@ RunCounters start_state(const RunOptions& options, const Spec& spec, Solver& sol
     return run;
   }
   run.dt = solver.time_step();
+  std::vector<double> momentum_scale{0.0};  // sum over every rank's particles (docs/scale-out.md §7)
   for (std::size_t p = 0; p < sim.particles.size(); ++p)
-    run.momentum_scale += sim.particles.mass[p] * sim.particles.v[p].norm();
+    momentum_scale[0] += sim.particles.mass[p] * sim.particles.v[p].norm();
+  sim.comm.sum(momentum_scale);
+  run.momentum_scale = momentum_scale[0];
   run.next_output_time = spec.output.every_time;
   return run;
+}
+
+/// The x behind which `fraction` of the mass of every rank's particles lies (final_runout_x of a
+/// decomposed run; a collective): the smallest particle x with sum_{x_p <= x} m_p >= fraction *
+/// sum_p m_p, found by bisection on the doubles between the smallest and the largest particle x
+/// (at most 64 rounds, each one sum over the ranks, identical on every rank) instead of gathering
+/// and sorting every particle (docs/scale-out.md §8). Equal to the sorted search of add_reach but
+/// for the order of the mass sums (round-off at a front that splits at exactly 99 %).
+template <int D>
+double mass_front_x(const ParticleSet<D>& ps, double fraction, const Communicator& comm) {
+  // finite doubles -> unsigned integers of the same order (-0 just below +0)
+  const auto key = [](double x) {
+    const auto bits = std::bit_cast<std::uint64_t>(x);
+    return (bits >> 63) != 0 ? ~bits : bits | (std::uint64_t{1} << 63);
+  };
+  const auto value = [](std::uint64_t k) {
+    return std::bit_cast<double>((k >> 63) != 0 ? k & ~(std::uint64_t{1} << 63) : ~k);
+  };
+  std::vector<double> extremes{-std::numeric_limits<double>::infinity(),
+                               -std::numeric_limits<double>::infinity()};
+  for (std::size_t p = 0; p < ps.size(); ++p)
+    if (std::isfinite(ps.x[p][0])) {
+      extremes[0] = std::max(extremes[0], -ps.x[p][0]);
+      extremes[1] = std::max(extremes[1], ps.x[p][0]);
+    }
+  comm.max(extremes);
+  const double smallest = -extremes[0], largest = extremes[1];
+  if (!(smallest <= largest)) return kNoValue;  // no particle with a finite x
+  const auto mass_behind = [&](double x) {
+    std::vector<double> behind{0.0};
+    for (std::size_t p = 0; p < ps.size(); ++p)
+      if (ps.x[p][0] <= x) behind[0] += ps.mass[p];
+    comm.sum(behind);
+    return behind[0];
+  };
+  const double target = fraction * mass_behind(largest);
+  if (!(target > 0.0)) return smallest + 0.0;
+  std::uint64_t below = key(smallest) - 1, at = key(largest);  // mass_behind: < target, >= target
+  while (at - below > 1) {
+    const std::uint64_t middle = below + (at - below) / 2;
+    (mass_behind(value(middle)) >= target ? at : below) = middle;
+  }
+  return value(at) + 0.0;  // + 0.0: -0 -> +0
 }
 
 /// The bodies' reach (final-state measures final_max_x/y/z and final_max_radius_xy): the largest
 /// coordinate, and in 3-D the largest distance from the z axis, of any particle centre. (Not the
 /// particle domains: in a granular flow F grows without bound and a domain's extent means nothing.)
-/// And the x behind which 99 % of the mass lies (final_runout_x).
+/// And the x behind which 99 % of the mass lies (final_runout_x). Over every rank's particles: a
+/// collective in a decomposed run.
 template <int D>
-void add_reach(const ParticleSet<D>& ps, RunFacts& facts) {
+void add_reach(const ParticleSet<D>& ps, RunFacts& facts, const Communicator& comm = {}) {
+  if (comm.distributed()) {
+    if (comm.sum(static_cast<long>(ps.size())) == 0) return;
+    // per axis the largest coordinate, then the largest radius (3-D)
+    std::vector<double> maxima(D + 1, -std::numeric_limits<double>::infinity());
+    maxima[D] = 0.0;
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      for (int a = 0; a < D; ++a) maxima[a] = std::max(maxima[a], ps.x[p][a]);
+      if constexpr (D == 3) maxima[D] = std::max(maxima[D], std::hypot(ps.x[p][0], ps.x[p][1]));
+    }
+    comm.max(maxima);
+    for (int a = 0; a < D; ++a) facts.final_reach[static_cast<std::size_t>(a)] = maxima[a];
+    if constexpr (D == 3) facts.final_radius_xy = maxima[D];
+    facts.final_runout_x = mass_front_x(ps, 0.99, comm);
+    return;
+  }
   if (ps.size() == 0) return;
   for (int a = 0; a < D; ++a) {
     double reach = -std::numeric_limits<double>::infinity();
@@ -161,17 +225,38 @@ void add_reach(const ParticleSet<D>& ps, RunFacts& facts) {
   }
 }
 
-/// The summary's facts that every solver shares: counts, time, threads, final stresses.
+/// The particles' sigma_xx that the final-state measures need, over every rank (a collective in a
+/// decomposed run). One rank: every particle's, in storage order. Several: only the stresses
+/// that shock_plateau_stress (analysis/measures_eval.cpp, the one measure that reads them) keeps,
+/// those with -sigma_xx >= 0.5 max(0, max_p -sigma_xx), gathered in rank order; the plateau's
+/// median is the same as from all of them, and a rank does not receive every particle's stress.
+template <int D>
+std::vector<double> final_stress_xx(const ParticleSet<D>& ps, const Communicator& comm) {
+  std::vector<double> out;
+  if (!comm.distributed()) {
+    for (const auto& stress : ps.stress) out.push_back(stress(0, 0));
+    return out;
+  }
+  double largest = 0.0;  // the largest compression
+  for (const auto& stress : ps.stress) largest = std::max(largest, -stress(0, 0));
+  largest = comm.max(largest);
+  for (const auto& stress : ps.stress)
+    if (-stress(0, 0) >= 0.5 * largest) out.push_back(stress(0, 0));
+  return comm.all_gather(out);
+}
+
+/// The summary's facts that every solver shares: counts, time, threads, final stresses; over
+/// every rank's particles (a collective in a decomposed run).
 template <int D>
 void add_state_facts(const Simulation<D>& sim, RunFacts& facts) {
   facts.dimension = D;
-  facts.particles = sim.particles.size();
+  facts.particles = static_cast<std::size_t>(sim.comm.sum(static_cast<long>(sim.particles.size())));
   facts.nodes = sim.grid.node_count;
   facts.steps = sim.step;
   facts.time = sim.time;
   facts.threads = current_threads();
-  for (const auto& stress : sim.particles.stress) facts.final_stress_xx.push_back(stress(0, 0));
-  add_reach(sim.particles, facts);
+  facts.final_stress_xx = final_stress_xx(sim.particles, sim.comm);
+  add_reach(sim.particles, facts, sim.comm);
 }
 
 }  // namespace run_loop_detail
@@ -188,8 +273,8 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
   RunCounters run = start_state<D>(options, spec, solver, restored);  // may throw InputError
   const bool restarting = !options.restart.empty();
   std::filesystem::create_directories(options.out_dir);
-  const auto probe_ids = probe_particle_ids<D>(sim.particles, spec.output.probes);
-  RunOutputs<D> outputs(spec, options.out_dir, std::move(restored), run, probe_ids);
+  const auto probe_ids = probe_particle_ids<D>(sim.particles, spec.output.probes, sim.comm);
+  RunOutputs<D> outputs(spec, options.out_dir, std::move(restored), run, probe_ids, sim.comm);
   if (spec.output.particles) {
     std::string part;
     solver.write_static_outputs(options.out_dir, part);
@@ -312,16 +397,14 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
   facts.momentum_scale = run.momentum_scale;
   add_state_facts(sim, facts);
   solver.add_facts(facts);
-  for (long id : probe_ids)
-    for (std::size_t p = 0; p < sim.particles.size(); ++p)
-      if (sim.particles.id[p] == id) {
-        const Vec<D>& X = sim.particles.x0[p];
-        facts.probes.push_back({id, std::vector<double>(X.data(), X.data() + D)});
-      }
+  for (const auto& [id, X] : probe_reference_positions<D>(sim.particles, probe_ids, sim.comm))
+    facts.probes.push_back({id, std::vector<double>(X.data(), X.data() + D)});
 
+  // Every rank builds the same summary (from reduced facts) and returns it; rank 0 writes it.
   result.summary = run_summary(spec, options, facts, outputs.history());
-  write_file_atomically(options.out_dir / "summary.json", result.summary.dump(2) + "\n");
-  if (spec.output.plots && !options.scripts_dir.empty())
+  if (sim.comm.rank() == 0)
+    write_file_atomically(options.out_dir / "summary.json", result.summary.dump(2) + "\n");
+  if (sim.comm.rank() == 0 && spec.output.plots && !options.scripts_dir.empty())
     if (const auto error = draw_plots(options.out_dir, options.scripts_dir); !error.empty())
       std::fprintf(stderr, "warning: could not draw plots: %s\n", error.c_str());
   result.history = outputs.take_history();

@@ -73,9 +73,16 @@ std::array<double, 3> pad(const Vec<D>& v) {
   return out;
 }
 
-inline std::string output_name(long index, const char* prefix) {
+inline std::string output_name(long index, const char* prefix, const char* extension = ".vtu") {
   std::ostringstream name;
-  name << prefix << std::setw(6) << std::setfill('0') << index << ".vtu";
+  name << prefix << std::setw(6) << std::setfill('0') << index << extension;
+  return name.str();
+}
+
+/// Rank `rank`'s piece of a decomposed run's output: PREFIXNNNNNN_rRRRR.vtu.
+inline std::string piece_name(long index, const char* prefix, int rank) {
+  std::ostringstream name;
+  name << prefix << std::setw(6) << std::setfill('0') << index << "_r" << std::setw(4) << rank << ".vtu";
   return name.str();
 }
 
@@ -98,28 +105,43 @@ std::vector<std::string> state_component_names(const Simulation<D>& sim) {
 }
 
 /// One history.csv row of the simulation's present state; `probe_ids`: the particles of output.probes.
+/// In a decomposed run (sim.comm.distributed()) a collective: the particle and owned-node sums and
+/// the ranks' partial accumulated totals (external work and impulse, friction work, the grid
+/// momentum difference) are added over the ranks, and every rank gets the same row.
 template <int D>
 HistorySample history_sample(const Simulation<D>& sim, int body_count, const std::vector<long>& probe_ids) {
   using run_outputs_detail::pad;
   const auto d = measure_diagnostics(sim, body_count);
+  // the accumulated totals: each rank's part (one rank: the whole), added here, not where stored
+  std::vector<double> totals{sim.external_work, sim.friction_work};
+  for (int a = 0; a < D; ++a) totals.push_back(sim.external_impulse[a]);
+  for (int a = 0; a < D; ++a) totals.push_back(sim.grid_momentum_difference[a]);
+  sim.comm.sum(totals);
+  Vec<D> external_impulse, grid_momentum_difference;
+  for (int a = 0; a < D; ++a) {
+    external_impulse[a] = totals[2 + a];
+    grid_momentum_difference[a] = totals[2 + D + a];
+  }
   HistorySample s;
   s.time = sim.time;
   s.step = sim.step;
   s.dt = sim.last_dt;
   s.kinetic_energy = d.kinetic_energy;
   s.strain_energy = d.strain_energy;
-  s.external_work = sim.external_work;
-  s.friction_work = sim.friction_work;
-  s.plastic_work = plastic_work<D>(sim.particles);
+  s.external_work = totals[0];
+  s.friction_work = totals[1];
+  s.plastic_work = d.plastic_work;
   s.momentum = pad<D>(d.momentum);
-  s.external_impulse = pad<D>(sim.external_impulse);
+  s.external_impulse = pad<D>(external_impulse);
   s.min_jacobian = d.min_jacobian;
   s.rms_velocity_change = d.rms_velocity_change;
   s.body_kinetic = d.body_kinetic;
   s.body_strain = d.body_strain;
   s.body_mass = d.body_mass;
-  s.grid_momentum_difference = pad<D>(sim.grid_momentum_difference);
-  const GridModes modes = measure_grid_modes(sim.grid, sim.fields.mass, sim.fields.velocity_new);
+  s.grid_momentum_difference = pad<D>(grid_momentum_difference);
+  const GridModes modes =
+      measure_grid_modes(sim.grid, sim.fields.mass, sim.fields.velocity_new,
+                         NodeOwnership{sim.comm, sim.owned_nodes_begin, sim.owned_nodes_end});
   s.checkerboard_velocity = modes.checkerboard_velocity;
   s.grid_rms_velocity = modes.rms_velocity;
   s.hourglass_energy = modes.hourglass_energy;
@@ -128,7 +150,7 @@ HistorySample history_sample(const Simulation<D>& sim, int body_count, const std
     s.body_com_velocity.push_back(pad<D>(Vec<D>(d.body_momentum[b] / std::max(d.body_mass[b], 1e-300))));
     s.body_com_position.push_back(pad<D>(d.body_com_position[b]));
   }
-  append_probe_values(sim.particles, probe_ids, s.probes);
+  append_probe_values(sim.particles, probe_ids, s.probes, sim.comm);
   return s;
 }
 
@@ -136,20 +158,26 @@ HistorySample history_sample(const Simulation<D>& sim, int body_count, const std
 /// particle states. history.csv is rewritten whole (atomically) at most once a second, with
 /// every particle output, and at the end: rewriting it at each of many frequent outputs would
 /// cost O(n^2).
+/// On several MPI ranks (`comm` distributed; docs/output.md "Runs on several MPI ranks") every
+/// rank keeps the same history and .pvd entries, but only rank 0 writes history.csv and the .pvd
+/// files; each rank writes its own particles as a piece PREFIXNNNNNN_rRRRR.vtu, and rank 0 the
+/// PREFIXNNNNNN.pvtu that names the pieces (after a barrier: every piece is on disk when the
+/// .pvtu and the .pvd name it). record() is then a collective.
 template <int D>
 class RunOutputs {
  public:
   /// `run` carries the counters and the .pvd entries of a restart (zero at a fresh start);
   /// `probe_ids` the particles that output.probes follow.
   RunOutputs(const Spec& spec, std::filesystem::path out_dir, History history, const RunCounters& run,
-             std::vector<long> probe_ids)
+             std::vector<long> probe_ids, const Communicator& comm = {})
       : spec_(spec),
+        comm_(comm),
         out_dir_(std::move(out_dir)),
         history_(std::move(history)),
         body_count_(static_cast<int>(spec.bodies.size())),
         probe_ids_(std::move(probe_ids)),
-        pvd_(out_dir_ / "results.pvd"),
-        domains_pvd_(out_dir_ / "domains.pvd"),  // GIMP / CPDI particle domains
+        pvd_(out_dir_ / "results.pvd", comm.rank() == 0),
+        domains_pvd_(out_dir_ / "domains.pvd", comm.rank() == 0),  // GIMP / CPDI particle domains
         write_domains_(spec.output.particles && has_particle_domains(spec.solver.shape)),
         outputs_(run.outputs) {
     pvd_.restore(run.results);  // a restart rewrites them as the checkpoint knew them
@@ -170,17 +198,14 @@ class RunOutputs {
         std::chrono::steady_clock::now() - last_history_write_ > std::chrono::seconds(1))
       write_history();
     if (spec_.output.particles) {
-      const std::string name = run_outputs_detail::output_name(outputs_, "particles_");
-      write_file_atomically(out_dir_ / name, particles_vtu(sim.particles, spec_.output.fields, true,
-                                                           state_component_names(sim)));
+      const std::string name = write_dataset(
+          "particles_", particles_vtu(sim.particles, spec_.output.fields, true, state_component_names(sim)));
       pvd_.add(sim.time, name);
       if (frame_writer_)
         frame_writer_(out_dir_ / run_outputs_detail::output_name(outputs_, frame_prefix_.c_str()));
       if (write_domains_) {
-        const std::string domains = run_outputs_detail::output_name(outputs_, "domains_");
         const auto corners = particle_domains<D>(spec_.solver.shape, sim.grid, sim.particles);
-        write_file_atomically(out_dir_ / domains, domains_vtu<D>(corners, sim.particles));
-        domains_pvd_.add(sim.time, domains);
+        domains_pvd_.add(sim.time, write_dataset("domains_", domains_vtu<D>(corners, sim.particles)));
       }
     }
     ++outputs_;
@@ -199,6 +224,7 @@ class RunOutputs {
   }
 
   void write_history() {
+    if (comm_.rank() != 0) return;
     write_file_atomically(out_dir_ / "history.csv", history_.csv());
     last_history_write_ = std::chrono::steady_clock::now();
   }
@@ -211,7 +237,28 @@ class RunOutputs {
   [[nodiscard]] PvdEntries domains_entries() const { return domains_pvd_.entries(); }
 
  private:
+  /// Writes this output's `vtu` (one rank: PREFIXNNNNNN.vtu; several: this rank's piece, and on
+  /// rank 0 the .pvtu of all pieces) and returns the name the .pvd lists.
+  std::string write_dataset(const char* prefix, const std::string& vtu) {
+    using namespace run_outputs_detail;
+    if (!comm_.distributed()) {
+      const std::string name = output_name(outputs_, prefix);
+      write_file_atomically(out_dir_ / name, vtu);
+      return name;
+    }
+    write_file_atomically(out_dir_ / piece_name(outputs_, prefix, comm_.rank()), vtu);
+    const std::string name = output_name(outputs_, prefix, ".pvtu");
+    comm_.barrier();  // every piece is written before the .pvtu (and then the .pvd) names it
+    if (comm_.rank() == 0) {
+      std::vector<std::string> pieces;
+      for (int r = 0; r < comm_.size(); ++r) pieces.push_back(piece_name(outputs_, prefix, r));
+      write_file_atomically(out_dir_ / name, pvtu_file(vtu, pieces));
+    }
+    return name;
+  }
+
   const Spec& spec_;
+  Communicator comm_;
   std::filesystem::path out_dir_;
   History history_;
   int body_count_;
