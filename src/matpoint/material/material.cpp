@@ -142,12 +142,16 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
   const auto stride = static_cast<std::ptrdiff_t>(particles.state_stride);
   long first_bad = -1;
+  double fastest = 0.0;  // max_p c_p, as max_current_wave_speed (wave_speed.hpp) finds it
   for (std::size_t m = 0; m < materials.size(); ++m) {
     std::visit(
         [&](const auto& model) {
           using Model = std::decay_t<decltype(model)>;
           const double c = model.template wave_speed<D>();
-#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : first_bad)
+          constexpr bool kSpeedWithState = requires { model.template wave_speed_at<D>(Mat<D>{}, nullptr); };
+          constexpr bool kSpeedAtF = requires { model.template wave_speed_at<D>(Mat<D>{}); };
+          if constexpr (!kSpeedWithState && !kSpeedAtF) fastest = std::max(fastest, c);
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : first_bad, fastest)
           for (std::ptrdiff_t p = 0; p < n; ++p) {
             if (particles.material[p] != static_cast<int>(m)) continue;
             const Mat<D>& F = particles.F[p];
@@ -160,20 +164,33 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
                                                        particles.L[p].trace(), c)
                                          : 0.0;
             double zz;
+            double speed = 0.0;  // c_p of the updated F and state (the wave_speed_at models)
             if constexpr (requires { model.yield; }) {  // the plastic models: rate terms need dt
               particles.stress[p] = model.template stress<D>(F, q, &particles.state[p * stride], zz, dt);
             } else if constexpr (requires { Model::state_size; }) {
               particles.stress[p] = model.template stress<D>(F, q, &particles.state[p * stride], zz);
+            } else if constexpr (requires { model.template stress_and_wave_speed<D>(F, zz, speed); }) {
+              particles.stress[p] =
+                  model.template stress_and_wave_speed<D>(F, zz, speed) - q * Mat<D>::Identity();
+              zz -= q;
             } else {
               particles.stress[p] = model.template stress<D>(F, zz) - q * Mat<D>::Identity();
               zz -= q;
             }
+            if constexpr (kSpeedWithState)
+              speed = model.template wave_speed_at<D>(F, &particles.state[p * stride]);
+            else if constexpr (kSpeedAtF &&
+                               !requires { model.template stress_and_wave_speed<D>(F, zz, speed); })
+              speed = model.template wave_speed_at<D>(F);
+            if constexpr (kSpeedWithState || kSpeedAtF) fastest = std::max(fastest, speed);
             if constexpr (D == 2) particles.stress_zz[p] = zz;
             if (!particles.stress[p].allFinite()) first_bad = std::max(first_bad, static_cast<long>(n - p));
           }
         },
         materials[m]);
   }
+  // A failed update ends the step: no time step follows it from this state.
+  particles.recorded_wave_speed = first_bad < 0 ? fastest : -1.0;
   return first_bad < 0 ? -1 : n - first_bad;
 }
 
