@@ -89,8 +89,10 @@ class ExplicitSolver {
   Simulation<D>& sim() { return sim_; }
   [[nodiscard]] const Simulation<D>& sim() const { return sim_; }
 
-  /// solver.dt, or the Courant step of the present state (Nairn 2026 §1.8).
-  [[nodiscard]] double time_step() const { return stable_time_step(sim_); }
+  /// solver.dt, or the Courant step of the present state (Nairn 2026 §1.8), with the wave speeds
+  /// the last stress update recorded (the set-up's, or the previous step's: nothing writes F or
+  /// the material state between it and this call; restore() forgets them).
+  [[nodiscard]] double time_step() const { return stable_time_step(sim_, /*use_recorded=*/true); }
   void step(double h) {
     // loads.gravity_scale at the step's start (the forward step's body force)
     const double scale = spec_.loads.gravity_scale(sim_.time);
@@ -108,6 +110,7 @@ class ExplicitSolver {
     counters.fmpm_seconds = state.fmpm.seconds;
   }
   void restore(const RunCounters& c) {
+    sim_.particles.recorded_wave_speed = -1.0;  // F and state were read from the checkpoint
     stepper_.restore({c.next_fmpm_time, c.total_mass, {c.fmpm_loops, c.fmpm_passes, c.fmpm_seconds}});
   }
 

@@ -174,9 +174,11 @@ double max_wave_speed(const Simulation<D>& sim) {
 }
 
 template <int D>
-double stable_time_step(const Simulation<D>& sim) {
+double stable_time_step(const Simulation<D>& sim, bool use_recorded) {
   if (sim.solver.dt) return *sim.solver.dt;
-  double speed = max_current_wave_speed<D>(sim.materials, sim.particles);
+  const double recorded = sim.particles.recorded_wave_speed;
+  double speed =
+      use_recorded && recorded >= 0.0 ? recorded : max_current_wave_speed<D>(sim.materials, sim.particles);
   double fastest2 = 0.0;
   const auto n = static_cast<std::ptrdiff_t>(sim.particles.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : fastest2)
@@ -217,8 +219,8 @@ template Simulation<3> build_simulation<3>(const Spec&);
 template double max_wave_speed<1>(const Simulation<1>&);
 template double max_wave_speed<2>(const Simulation<2>&);
 template double max_wave_speed<3>(const Simulation<3>&);
-template double stable_time_step<1>(const Simulation<1>&);
-template double stable_time_step<2>(const Simulation<2>&);
-template double stable_time_step<3>(const Simulation<3>&);
+template double stable_time_step<1>(const Simulation<1>&, bool);
+template double stable_time_step<2>(const Simulation<2>&, bool);
+template double stable_time_step<3>(const Simulation<3>&, bool);
 
 }  // namespace matpoint

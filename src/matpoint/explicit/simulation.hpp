@@ -92,7 +92,9 @@ double max_wave_speed(const Simulation<D>& sim);
 
 /// Time step: the input's dt, or courant * h_min / max_p max(c_p, |V_p|) with each particle's
 /// present wave speed c_p (Nairn 2026 §1.8; material/wave_speed.hpp). Recomputed every step.
+/// With `use_recorded`, max_p c_p is the particles' recorded_wave_speed when it is known (the last
+/// stress update's, the same value without a second pass over F); else it is computed.
 template <int D>
-double stable_time_step(const Simulation<D>& sim);
+double stable_time_step(const Simulation<D>& sim, bool use_recorded = false);
 
 }  // namespace matpoint

@@ -22,6 +22,31 @@ MohrCoulombYield mohr_coulomb_yield(const MaterialSpec& spec) {
           spec.tension_cutoff};
 }
 
+/// Whether c_p(F) <= `fastest` is certain without b_max, the largest eigenvalue of B = F F^T (in
+/// 3-D Eigen's direct solver, the costliest part of the time step's wave speed). NeoHookean's
+/// c_p^2 = (mu (b_max + 1) + V) / rho with V = lambda (1 - ln J) <= lambda / J (ln J >= 1 - 1/J) or
+/// V = lambda (J^2 + 1) / 2, so c_p <= fastest when b_max <= T = (rho fastest^2 - V_upper) / mu - 1,
+/// which holds when T I - B is positive definite: its LDL^T factorisation (backward stable, as
+/// Cholesky) has positive pivots. T is lowered by 1e-9 of the sizes involved, far above the
+/// rounding of c_p, of the eigenvalue and of the factorisation (~1e-15 of them), so a particle this
+/// skips could not have raised the maximum: the recorded maximum is bitwise the one of computing
+/// every c_p, and most particles (all but those that raise the running maximum) skip.
+bool wave_speed_certainly_below(const NeoHookean& m, const Mat<3>& F, double J, double fastest) {
+  if (!(fastest > 0.0) || !(m.mu > 0.0) || !(m.lambda >= 0.0) || !(J > 0.0)) return false;
+  const double V = m.volumetric == NeoHookeanVolumetric::LogJ ? m.lambda / J : 0.5 * m.lambda * (J * J + 1.0);
+  const Mat<3> B = F * F.transpose();
+  const double target = m.density * fastest * fastest;  // mu (b_max + 1) + V may reach this
+  const double T = (target - V) / m.mu - 1.0 - 1e-9 * (B.trace() + 1.0 + (target + V) / m.mu);
+  const double d0 = T - B(0, 0);  // A = T I - B = L diag(d) L^T
+  if (!(d0 > 0.0)) return false;
+  const double l10 = -B(1, 0) / d0, l20 = -B(2, 0) / d0;
+  const double d1 = (T - B(1, 1)) + l10 * B(1, 0);
+  if (!(d1 > 0.0)) return false;
+  const double e21 = -B(2, 1) + l20 * B(1, 0);  // A21 - l20 d0 l10
+  const double d2 = (T - B(2, 2)) + l20 * B(2, 0) - e21 * e21 / d1;
+  return d2 > 0.0;
+}
+
 }  // namespace
 
 Material make_material(const MaterialSpec& spec) {
@@ -142,12 +167,21 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
   const auto stride = static_cast<std::ptrdiff_t>(particles.state_stride);
   long first_bad = -1;
+  double fastest = 0.0;  // max_p c_p, as max_current_wave_speed (wave_speed.hpp) finds it
   for (std::size_t m = 0; m < materials.size(); ++m) {
     std::visit(
         [&](const auto& model) {
           using Model = std::decay_t<decltype(model)>;
           const double c = model.template wave_speed<D>();
-#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : first_bad)
+          constexpr bool kSpeedWithState = requires { model.template wave_speed_at<D>(Mat<D>{}, nullptr); };
+          constexpr bool kSpeedAtF = requires { model.template wave_speed_at<D>(Mat<D>{}); };
+          // 3-D neo-Hookean: c_p only where it could raise the maximum; 1-D, 2-D: with the stress
+          constexpr bool kSkipSlower = D == 3 && std::is_same_v<Model, NeoHookean>;
+          constexpr bool kWithStress = !kSkipSlower && requires(double& x) {
+            model.template stress_and_wave_speed<D>(Mat<D>{}, x, x);
+          };
+          if constexpr (!kSpeedWithState && !kSpeedAtF) fastest = std::max(fastest, c);
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : first_bad, fastest)
           for (std::ptrdiff_t p = 0; p < n; ++p) {
             if (particles.material[p] != static_cast<int>(m)) continue;
             const Mat<D>& F = particles.F[p];
@@ -160,20 +194,37 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
                                                        particles.L[p].trace(), c)
                                          : 0.0;
             double zz;
+            double speed = 0.0;  // c_p of the updated F and state (the wave_speed_at models)
             if constexpr (requires { model.yield; }) {  // the plastic models: rate terms need dt
               particles.stress[p] = model.template stress<D>(F, q, &particles.state[p * stride], zz, dt);
             } else if constexpr (requires { Model::state_size; }) {
               particles.stress[p] = model.template stress<D>(F, q, &particles.state[p * stride], zz);
+            } else if constexpr (kSkipSlower) {
+              particles.stress[p] = model.template stress<D>(F, zz) - q * Mat<D>::Identity();
+              zz -= q;
+              if (!wave_speed_certainly_below(model, F, J, fastest))
+                speed = model.template wave_speed_at<D>(F);
+            } else if constexpr (kWithStress) {
+              particles.stress[p] =
+                  model.template stress_and_wave_speed<D>(F, zz, speed) - q * Mat<D>::Identity();
+              zz -= q;
             } else {
               particles.stress[p] = model.template stress<D>(F, zz) - q * Mat<D>::Identity();
               zz -= q;
             }
+            if constexpr (kSpeedWithState)
+              speed = model.template wave_speed_at<D>(F, &particles.state[p * stride]);
+            else if constexpr (kSpeedAtF && !kSkipSlower && !kWithStress)
+              speed = model.template wave_speed_at<D>(F);
+            if constexpr (kSpeedWithState || kSpeedAtF) fastest = std::max(fastest, speed);
             if constexpr (D == 2) particles.stress_zz[p] = zz;
             if (!particles.stress[p].allFinite()) first_bad = std::max(first_bad, static_cast<long>(n - p));
           }
         },
         materials[m]);
   }
+  // A failed update ends the step: no time step follows it from this state.
+  particles.recorded_wave_speed = first_bad < 0 ? fastest : -1.0;
   return first_bad < 0 ? -1 : n - first_bad;
 }
 

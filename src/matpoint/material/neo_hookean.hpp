@@ -52,6 +52,23 @@ struct NeoHookean {
     double zz;
     return stress<D>(F, zz);
   }
+  /// stress<D>(F, sigma_zz), and c = wave_speed_at<D>(F), with J, ln J and B computed once: the
+  /// stress update's pass records the time step's wave speed (material.cpp). The same operations
+  /// in the same order as the two functions (the build does not contract into FMAs), so both
+  /// results are bitwise those of the separate calls.
+  template <int D>
+  [[nodiscard]] Mat<D> stress_and_wave_speed(const Mat<D>& F, double& sigma_zz, double& c) const {
+    const double J = F.determinant();
+    const bool log_j = volumetric == NeoHookeanVolumetric::LogJ;
+    const double lnJ = log_j ? std::log(J) : 0.0;
+    const double pressure_part = log_j ? lambda * lnJ / J : 0.5 * lambda * (J - 1.0 / J);
+    sigma_zz = pressure_part;
+    const Mat<D> B = F * F.transpose();
+    const double b_max = largest_symmetric_eigenvalue<D>(B);
+    const double volumetric_modulus = log_j ? lambda * (1.0 - lnJ) : 0.5 * lambda * (J * J + 1.0);
+    c = std::sqrt(std::max(0.0, mu * (b_max + 1.0) + volumetric_modulus) / density);
+    return pressure_part * Mat<D>::Identity() + (mu / J) * (B - Mat<D>::Identity());
+  }
   /// Kirchhoff stress tau = J sigma at F for any scalar type S (double, or a dual number of the
   /// implicit solver's automatic differentiation):
   ///   log_j:          tau = lambda ln J I + mu (B - I)    (Aulisa & Capodaglio eq. (12) times J, the

@@ -49,6 +49,13 @@ struct ParticleSet {
   // has_temperature is set (add() then starts a particle at 0); empty when off.
   bool has_temperature = false;
   std::vector<double> temperature;
+  // The largest present wave speed max_p c_p (material/wave_speed.hpp) as the last update_stress
+  // computed it beside the stresses, for the time step (stable_time_step with the recorded speed);
+  // negative: unknown. It holds while F, state, material and the set of particles are as that
+  // update left them (the order does not matter): update_deformation and add() reset it, and so
+  // must any other code that writes F or state or adds or removes particles (a checkpoint read,
+  // ExplicitSolver::restore; a migration between ranks).
+  double recorded_wave_speed = -1.0;
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
   [[nodiscard]] bool plastic(std::size_t p) const {
@@ -64,6 +71,7 @@ struct ParticleSet {
 
   void add(const Vec<D>& position, const Vec<D>& velocity, double m, double vol, const Vec<D>& size,
            int material_id, int body_id) {
+    recorded_wave_speed = -1.0;
     id.push_back(static_cast<long>(x.size()));
     x.push_back(position);
     v.push_back(velocity);
