@@ -86,7 +86,9 @@ void expect_equal_to_serial(const std::string& json, long steps) {
     std::printf("%d rank(s): %zu particles, %ld steps, at most %ld particles changed rank in a step; "
                 "%zu values differ from the serial run\n",
                 world.size(), serial.id.size(), steps, moved, differing);
-  if (world.size() > 1) EXPECT_GT(moved, 0) << "the run must move particles between ranks to test migration";
+  if (world.size() > 1) {
+    EXPECT_GT(moved, 0) << "the run must move particles between ranks to test migration";
+  }
 }
 
 // Sulsky's two disks (examples/two-disks) on a finer grid (h = 0.02: 7 brick layers along y),
