@@ -145,8 +145,9 @@ int command_run(const std::string& input, RunOptions options, bool overwrite) {
   const bool decomposed = comm.distributed() && !spec.solver.is_implicit();
   if (!decomposed) separate_rank_outputs(options);
   if (decomposed && !options.restart.empty())
-    return report_input_error(InputError({{"--restart", options.restart.string(),
-                                           "a run on 1 rank: restarting a decomposed run is not built yet"}}));
+    return report_input_error(
+        InputError({{"--restart", options.restart.string(),
+                     "a run on 1 rank: restarting a decomposed run is not built yet"}}));
   const bool talks = comm.rank() == 0 || !decomposed;
   if (!talks) options.progress = false;
   // A restart continues in its checkpoint's folder; any other folder is checked like a fresh run's.
@@ -235,7 +236,6 @@ std::vector<std::string> split_petsc_options(int& argc, char** argv) {
     }
   return petsc;
 }
-
 
 }  // namespace
 

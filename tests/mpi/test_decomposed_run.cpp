@@ -44,7 +44,8 @@ Particles gather(const Simulation<2>& sim, const Communicator& comm) {
   const auto all_values = comm.all_gather(values);
   std::vector<std::size_t> order(all_ids.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all_ids[a] < all_ids[b]; });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return all_ids[a] < all_ids[b]; });
   Particles out;
   for (const std::size_t k : order) {
     out.id.push_back(all_ids[k]);
@@ -66,7 +67,8 @@ Particles run(const Spec& spec, long steps, const Communicator& comm, long* most
     solver.step(solver.time_step());
     EXPECT_EQ(comm.sum(static_cast<long>(ps.size())), count) << "step " << k;
     if (most_moved != nullptr)
-      *most_moved = std::max(*most_moved, comm.max(std::labs(static_cast<long>(ps.size()) - static_cast<long>(before))));
+      *most_moved = std::max(*most_moved,
+                             comm.max(std::labs(static_cast<long>(ps.size()) - static_cast<long>(before))));
   }
   return gather(solver.sim(), comm);
 }
@@ -80,12 +82,14 @@ void expect_equal_to_serial(const std::string& json, long steps) {
   const Particles ranks = run<Stencils>(spec, steps, world, &moved);
   ASSERT_EQ(ranks.id, serial.id) << "every id exactly once";
   std::size_t differing = 0;
-  for (std::size_t k = 0; k < serial.values.size(); ++k) differing += ranks.values[k] != serial.values[k] ? 1 : 0;
+  for (std::size_t k = 0; k < serial.values.size(); ++k)
+    differing += ranks.values[k] != serial.values[k] ? 1 : 0;
   EXPECT_EQ(differing, 0U) << "values that differ from the serial run's, of " << serial.values.size();
   if (world.rank() == 0)
-    std::printf("%d rank(s): %zu particles, %ld steps, at most %ld particles changed rank in a step; "
-                "%zu values differ from the serial run\n",
-                world.size(), serial.id.size(), steps, moved, differing);
+    std::printf(
+        "%d rank(s): %zu particles, %ld steps, at most %ld particles changed rank in a step; "
+        "%zu values differ from the serial run\n",
+        world.size(), serial.id.size(), steps, moved, differing);
   if (world.size() > 1) {
     EXPECT_GT(moved, 0) << "the run must move particles between ranks to test migration";
   }

@@ -32,8 +32,10 @@ TEST(SlabPartition, EveryCellLayerAndNodeLayerHasOneOwner) {
       const auto [n0, n1] = slabs.owned_nodes_of(r);
       for (int j = n0; j < n1; ++j) ++node_owners[static_cast<std::size_t>(j)];
     }
-    for (int j = 0; j < 45; ++j) EXPECT_EQ(cell_owners[static_cast<std::size_t>(j)], 1) << ranks << " ranks, cell " << j;
-    for (int j = 0; j <= 45; ++j) EXPECT_EQ(node_owners[static_cast<std::size_t>(j)], 1) << ranks << " ranks, node " << j;
+    for (int j = 0; j < 45; ++j)
+      EXPECT_EQ(cell_owners[static_cast<std::size_t>(j)], 1) << ranks << " ranks, cell " << j;
+    for (int j = 0; j <= 45; ++j)
+      EXPECT_EQ(node_owners[static_cast<std::size_t>(j)], 1) << ranks << " ranks, node " << j;
   }
 }
 

@@ -47,7 +47,8 @@ class CappedDomains {
     comm.sum(marks);
     const auto count = static_cast<long>(marks[0]);
     // the earliest first time of any rank (-1: none on this rank)
-    const double first_time = -comm.max(first_time_ < 0 ? -std::numeric_limits<double>::infinity() : -first_time_);
+    const double first_time =
+        -comm.max(first_time_ < 0 ? -std::numeric_limits<double>::infinity() : -first_time_);
     if (count == 0) return {};
     std::ostringstream text;
     text << "cpGIMP: " << count << " of " << capped_.size()
@@ -157,7 +158,8 @@ class ExplicitSolver {
     if (s.mapping != Mapping::MPM) facts.mls = stepper_.mls_statistics();
     if (sim_.has_contact && spec_.contact.normals == ContactNormals::Logistic)
       facts.logistic_fallbacks = sim_.contact.logistic_fallbacks();
-    if (auto warning = capped_.warning(sim_.comm); !warning.empty()) facts.warnings.push_back(std::move(warning));
+    if (auto warning = capped_.warning(sim_.comm); !warning.empty())
+      facts.warnings.push_back(std::move(warning));
   }
 
  private:

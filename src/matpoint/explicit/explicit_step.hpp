@@ -60,7 +60,8 @@ class ExplicitStepper {
     step_dt_ = dt;
     stencils_.evaluate(s_.grid, s_.particles);
     if (ranks_)  // the particles that arrived since the last sort, in the serial run's order
-      brick_schedule().order_arrivals(ranks_->migration.keys(), s_.particles.id, ranks_->migration.sorted_prefix());
+      brick_schedule().order_arrivals(ranks_->migration.keys(), s_.particles.id,
+                                      ranks_->migration.sorted_prefix());
     if (const long p = first_corner_outside(stencils_); p >= 0) fail_corner_outside(p);
     if (s_.conditions.has_one_sided())
       mark_nodes_touching_faces(s_.grid, grid_, stencils_, s_.particles, s_.conditions);
@@ -205,7 +206,8 @@ class ExplicitStepper {
     const auto& ps = s_.particles;
     std::vector<std::array<int, D>> cells(ps.size());
     for (std::size_t p = 0; p < ps.size(); ++p) cells[p] = s_.grid.cell_coords(ps.x[p]);
-    ranks_ = std::make_unique<Ranks>(s_.grid, SlabPartition<D>::balanced(s_.grid, cells, s_.comm.size()), s_.comm);
+    ranks_ =
+        std::make_unique<Ranks>(s_.grid, SlabPartition<D>::balanced(s_.grid, cells, s_.comm.size()), s_.comm);
     ranks_->migration.keep_own(s_.particles);
     const auto [first, end] = ranks_->partition.owned_nodes_of(s_.comm.rank());
     const Index stride = s_.grid.stride[SlabPartition<D>::kAxis];

@@ -20,11 +20,12 @@ void scatter_scalar(const Grid<D>& grid, const Stencils& stencils, std::vector<d
                     const Contribution& contribution) {
   out.assign(static_cast<std::size_t>(grid.node_count), 0.0);
   const NodeArray written{out.data(), 1};  // for a decomposed run's hand-off between colours
-  stencils.brick_order().for_each_particle([&](std::size_t p) {
+  const auto add_particle = [&](std::size_t p) {
     stencils.for_each_node(grid, p, [&](Index node, double N, const Vec<D>& dN) {
       out[node] += contribution(static_cast<std::ptrdiff_t>(p), N, dN);
     });
-  }, std::span<const NodeArray>(&written, 1));
+  };
+  stencils.brick_order().for_each_particle(add_particle, std::span<const NodeArray>(&written, 1));
 }
 
 }  // namespace matpoint

@@ -46,7 +46,7 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
   if constexpr ((What & kScatterMomentum) != 0) written[count++] = {momentum->data(), D};
   if constexpr ((What & kScatterForce) != 0) written[count++] = {force->data(), D};
   static_assert(sizeof(Vec<D>) == D * sizeof(double));
-  stencils.brick_order().for_each_particle([&](std::size_t p) {
+  const auto add_particle = [&](std::size_t p) {
     const double m = particles.mass[p];
     Vec<D> mv = Vec<D>::Zero();
     if constexpr ((What & kScatterMomentum) != 0) mv = m * u[p];
@@ -61,7 +61,9 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
       if constexpr ((What & kScatterMomentum) != 0) momentum[k] += N * mv;
       if constexpr ((What & kScatterForce) != 0) force[k] += N * mb - vs * dN;
     });
-  }, std::span<const NodeArray>(written, static_cast<std::size_t>(count)));
+  };
+  stencils.brick_order().for_each_particle(
+      add_particle, std::span<const NodeArray>(written, static_cast<std::size_t>(count)));
 }
 
 }  // namespace matpoint

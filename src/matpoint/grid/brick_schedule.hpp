@@ -128,7 +128,8 @@ class BrickSchedule {
     const auto by_key = [&](std::int32_t a, std::int32_t b) {
       return key[a] != key[b] ? key[a] < key[b] : id[a] < id[b];
     };
-    for (const std::int32_t b : bricks) std::sort(order_.begin() + start_[b], order_.begin() + start_[b + 1], by_key);
+    for (const std::int32_t b : bricks)
+      std::sort(order_.begin() + start_[b], order_.begin() + start_[b + 1], by_key);
   }
 
   [[nodiscard]] Index brick_of(std::size_t p) const { return brick_of_[p]; }
@@ -156,8 +157,7 @@ class BrickSchedule {
   /// One more than the largest brick_major_cell of the grid.
   [[nodiscard]] static Index brick_major_cell_count(const Grid<D>& grid) {
     Index count = 1;
-    for (int a = 0; a < D; ++a)
-      count *= static_cast<Index>(bricks_along(grid, a)) << brick_shift(a);
+    for (int a = 0; a < D; ++a) count *= static_cast<Index>(bricks_along(grid, a)) << brick_shift(a);
     return count;
   }
 

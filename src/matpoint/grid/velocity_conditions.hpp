@@ -112,9 +112,9 @@ class VelocityConditions {
   std::vector<VelocityConditionSpec> walls_;
   std::vector<WallEntry> wall_entries_;  // this step's wall nodes
   bool one_sided_ = false;
-  std::vector<Face> faces_;         // the one-sided faces
-  std::vector<char> touching_;      // per node (every field): a body touches a one-sided face there
-  mutable std::vector<char> held_;  // per entry: this step's one-sided decision (apply() caches it)
+  std::vector<Face> faces_;           // the one-sided faces
+  std::vector<char> touching_;        // per node (every field): a body touches a one-sided face there
+  mutable std::vector<char> held_;    // per entry: this step's one-sided decision (apply() caches it)
   mutable std::vector<double> free_;  // apply()'s scratch: each condition's component before it
   Grid<D> grid_;
   int fields_ = 1;

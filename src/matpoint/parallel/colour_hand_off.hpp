@@ -114,13 +114,15 @@ class ColourHandOff final : public BrickBoundary {
       for (int a = 0; a < D; ++a) {
         if (a == kCut) continue;
         cover[a].resize(static_cast<std::size_t>(grid_.cells[a]) + 1);
-        for (int n = 0; n <= grid_.cells[a]; ++n) cover[a][static_cast<std::size_t>(n)] = covering_brick(a, n, c[a], m);
+        for (int n = 0; n <= grid_.cells[a]; ++n)
+          cover[a][static_cast<std::size_t>(n)] = covering_brick(a, n, c[a], m);
       }
       for (int r = 0; r < comm_.size(); ++r) {
         if (r == me) continue;
         const auto theirs = partition_.stored_nodes_of(r, below, above);
         Peer peer{r, {}, {}};
-        for (int layer = std::max(mine.first, theirs.first); layer < std::min(mine.second, theirs.second); ++layer) {
+        for (int layer = std::max(mine.first, theirs.first); layer < std::min(mine.second, theirs.second);
+             ++layer) {
           const int k = covering_brick(kCut, layer, c[kCut], m);
           if (k < 0) continue;
           const int owner = partition_.owner_of_layer(k);
@@ -128,14 +130,16 @@ class ColourHandOff final : public BrickBoundary {
           auto& list = owner == me ? peer.send : peer.receive;
           add_layer_nodes(layer, cover, list);
         }
-        if (!peer.send.empty() || !peer.receive.empty()) peers_[static_cast<std::size_t>(colour)].push_back(std::move(peer));
+        if (!peer.send.empty() || !peer.receive.empty())
+          peers_[static_cast<std::size_t>(colour)].push_back(std::move(peer));
       }
     }
   }
 
   /// Appends, in ascending flat index, the nodes of node layer `layer` (along the cut axis) that a
   /// brick of the colour covers along every other axis.
-  void add_layer_nodes(int layer, const std::array<std::vector<int>, D>& cover, std::vector<Index>& list) const {
+  void add_layer_nodes(int layer, const std::array<std::vector<int>, D>& cover,
+                       std::vector<Index>& list) const {
     constexpr int kCut = SlabPartition<D>::kAxis;
     std::array<int, D> ijk{};
     ijk[kCut] = layer;

@@ -144,7 +144,8 @@ void Communicator::exchange(const std::vector<Message>& send, const std::vector<
                       &requests.back()),
             "MPI_Isend");
   }
-  checked(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
+  checked(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+          "MPI_Waitall");
 }
 
 std::vector<std::vector<char>> Communicator::exchange(const std::vector<std::vector<char>>& to_rank) const {
@@ -163,18 +164,19 @@ std::vector<std::vector<char>> Communicator::exchange(const std::vector<std::vec
       throw std::runtime_error("Communicator::exchange: a message over 2 GiB");
     received[r].resize(static_cast<std::size_t>(receive_counts[r]));
     requests.emplace_back();
-    checked(MPI_Irecv(received[r].data(), static_cast<int>(receive_counts[r]), MPI_BYTE, static_cast<int>(r), kTag,
-                      MPI_COMM_WORLD, &requests.back()),
+    checked(MPI_Irecv(received[r].data(), static_cast<int>(receive_counts[r]), MPI_BYTE, static_cast<int>(r),
+                      kTag, MPI_COMM_WORLD, &requests.back()),
             "MPI_Irecv");
   }
   for (std::size_t r = 0; r < P; ++r) {
     if (send_counts[r] == 0 || static_cast<int>(r) == rank_) continue;
     requests.emplace_back();
-    checked(MPI_Isend(to_rank[r].data(), static_cast<int>(send_counts[r]), MPI_BYTE, static_cast<int>(r), kTag,
-                      MPI_COMM_WORLD, &requests.back()),
+    checked(MPI_Isend(to_rank[r].data(), static_cast<int>(send_counts[r]), MPI_BYTE, static_cast<int>(r),
+                      kTag, MPI_COMM_WORLD, &requests.back()),
             "MPI_Isend");
   }
-  checked(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
+  checked(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+          "MPI_Waitall");
   received[static_cast<std::size_t>(rank_)] = to_rank[static_cast<std::size_t>(rank_)];
   return received;
 }

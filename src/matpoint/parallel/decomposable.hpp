@@ -15,9 +15,8 @@ namespace matpoint {
 /// faces, the dynamic FMPM measure, checkpoints. One rank: nothing is refused.
 inline void check_decomposable(const Spec& spec, int ranks) {
   if (ranks <= 1) return;
-  const std::string expected =
-      "a run on 1 rank: the decomposed explicit solver (" + std::to_string(ranks) +
-      " MPI ranks) does not support this yet (docs/scale-out.md §17)";
+  const std::string expected = "a run on 1 rank: the decomposed explicit solver (" + std::to_string(ranks) +
+                               " MPI ranks) does not support this yet (docs/scale-out.md §17)";
   std::vector<InputIssue> issues;
   const auto refuse = [&](std::string path, std::string value) {
     issues.push_back({std::move(path), std::move(value), expected});
@@ -33,12 +32,14 @@ inline void check_decomposable(const Spec& spec, int ranks) {
     default:
       break;
   }
-  if (spec.solver.mapping != Mapping::MPM) refuse("solver.mapping", "an MLS mapping (it gathers neighbour particles)");
+  if (spec.solver.mapping != Mapping::MPM)
+    refuse("solver.mapping", "an MLS mapping (it gathers neighbour particles)");
   if (spec.solver.fmpm.measure != FmpmMeasure::None)
     refuse("solver.fmpm.measure", "dynamic FMPM (its measure needs an exact global sum)");
   for (std::size_t k = 0; k < spec.conditions.size(); ++k)
     if (spec.conditions[k].one_sided) refuse("conditions[" + std::to_string(k) + "].one_sided", "true");
-  if (spec.output.checkpoint.enabled()) refuse("output.checkpoint", "checkpoints (per-rank checkpoints are not built yet)");
+  if (spec.output.checkpoint.enabled())
+    refuse("output.checkpoint", "checkpoints (per-rank checkpoints are not built yet)");
   if (!issues.empty()) throw InputError(std::move(issues));
 }
 

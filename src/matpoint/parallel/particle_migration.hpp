@@ -70,7 +70,8 @@ class ParticleMigration {
     compact_keys(keep);
     sorted_prefix_ = survivors_in_prefix;
     for (int r = 0; r < P; ++r)
-      if (r != me && !arrived[static_cast<std::size_t>(r)].empty()) unpack(ps, arrived[static_cast<std::size_t>(r)]);
+      if (r != me && !arrived[static_cast<std::size_t>(r)].empty())
+        unpack(ps, arrived[static_cast<std::size_t>(r)]);
   }
 
   [[nodiscard]] const std::vector<Index>& keys() const { return key_; }
@@ -143,8 +144,8 @@ class ParticleMigration {
   const Grid<D>& grid_;
   const SlabPartition<D>& partition_;
   Communicator comm_;
-  std::vector<Index> key_;          // brick-major cell at the last sort (or on the sender's side)
-  std::size_t sorted_prefix_ = 0;   // particles [0, sorted_prefix_) are in (key, id) order
+  std::vector<Index> key_;         // brick-major cell at the last sort (or on the sender's side)
+  std::size_t sorted_prefix_ = 0;  // particles [0, sorted_prefix_) are in (key, id) order
 };
 
 }  // namespace matpoint

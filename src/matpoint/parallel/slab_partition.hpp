@@ -32,7 +32,8 @@ class SlabPartition {
 
   /// Cuts the brick layers among `ranks` so that each holds about the same number of the
   /// particles whose cells are `cells` (every rank computes the same cut from the same particles).
-  static SlabPartition balanced(const Grid<D>& grid, const std::vector<std::array<int, D>>& cells, int ranks) {
+  static SlabPartition balanced(const Grid<D>& grid, const std::vector<std::array<int, D>>& cells,
+                                int ranks) {
     SlabPartition out;
     out.cells_ = grid.cells[kAxis];
     const int layers = BrickSchedule<D>::bricks_along(grid, kAxis);
@@ -65,7 +66,9 @@ class SlabPartition {
   [[nodiscard]] int owner_of_layer(int layer) const {
     return owner_.empty() ? 0 : owner_[static_cast<std::size_t>(layer)];
   }
-  [[nodiscard]] int owner_of_cell(const std::array<int, D>& cell) const { return owner_of_layer(layer_of(cell[kAxis])); }
+  [[nodiscard]] int owner_of_cell(const std::array<int, D>& cell) const {
+    return owner_of_layer(layer_of(cell[kAxis]));
+  }
 
   /// The cell layers [begin, end) along the cut axis that rank r owns (empty: begin == end).
   [[nodiscard]] std::pair<int, int> cells_of(int r) const {
