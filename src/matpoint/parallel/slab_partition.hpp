@@ -34,31 +34,50 @@ class SlabPartition {
   /// particles whose cells are `cells` (every rank computes the same cut from the same particles).
   static SlabPartition balanced(const Grid<D>& grid, const std::vector<std::array<int, D>>& cells,
                                 int ranks) {
-    SlabPartition out;
-    out.cells_ = grid.cells[kAxis];
-    const int layers = BrickSchedule<D>::bricks_along(grid, kAxis);
-    std::vector<std::size_t> count(static_cast<std::size_t>(layers), 0);
+    std::vector<std::size_t> count(static_cast<std::size_t>(BrickSchedule<D>::bricks_along(grid, kAxis)), 0);
     for (const auto& c : cells) ++count[static_cast<std::size_t>(layer_of(c[kAxis]))];
+    return balanced(grid, count, ranks);
+  }
+
+  /// The same cut from the particle count per brick layer (`count`, summed over the ranks: a
+  /// re-partition computes it from one reduction, docs/scale-out.md §10).
+  static SlabPartition balanced(const Grid<D>& grid, const std::vector<std::size_t>& count, int ranks) {
+    const int layers = BrickSchedule<D>::bricks_along(grid, kAxis);
+    std::size_t total = 0;
+    for (const std::size_t n : count) total += n;
     // Rank r ends at the first layer boundary where the particles below reach (r + 1) n / P.
-    out.first_.assign(static_cast<std::size_t>(ranks) + 1, layers);
-    out.first_[0] = 0;
+    std::vector<int> first(static_cast<std::size_t>(ranks) + 1, layers);
+    first[0] = 0;
     std::size_t below = 0;
     int layer = 0;
     for (int r = 0; r + 1 < ranks; ++r) {
-      const std::size_t target = (cells.size() * static_cast<std::size_t>(r + 1) + ranks - 1) / ranks;
+      const std::size_t target = (total * static_cast<std::size_t>(r + 1) + ranks - 1) / ranks;
       while (layer < layers && below + count[static_cast<std::size_t>(layer)] <= target) {
         below += count[static_cast<std::size_t>(layer)];
         ++layer;
       }
       // At least one layer per rank while layers remain, so that no rank is skipped needlessly.
-      if (layer == out.first_[r] && layer < layers) below += count[static_cast<std::size_t>(layer++)];
-      out.first_[static_cast<std::size_t>(r) + 1] = layer;
+      if (layer == first[r] && layer < layers) below += count[static_cast<std::size_t>(layer++)];
+      first[static_cast<std::size_t>(r) + 1] = layer;
     }
+    return from_first_layers(grid, std::move(first));
+  }
+
+  /// The partition whose rank r owns the brick layers [first[r], first[r + 1]) (a checkpoint
+  /// stores `first_layers()`; first.front() == 0, first.back() == the layer count, non-decreasing).
+  static SlabPartition from_first_layers(const Grid<D>& grid, std::vector<int> first) {
+    SlabPartition out;
+    out.cells_ = grid.cells[kAxis];
+    out.first_ = std::move(first);
+    const int layers = BrickSchedule<D>::bricks_along(grid, kAxis);
     out.owner_.assign(static_cast<std::size_t>(layers), 0);
-    for (int r = 0; r < ranks; ++r)
+    for (int r = 0; r < out.ranks(); ++r)
       for (int l = out.first_[r]; l < out.first_[r + 1]; ++l) out.owner_[static_cast<std::size_t>(l)] = r;
     return out;
   }
+
+  /// Rank r's first brick layer, for r = 0..ranks() (the last entry: the layer count).
+  [[nodiscard]] const std::vector<int>& first_layers() const { return first_; }
 
   [[nodiscard]] int ranks() const { return static_cast<int>(first_.size()) - 1; }
   /// The brick layer of a cell coordinate along the cut axis.
