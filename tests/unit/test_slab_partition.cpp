@@ -70,4 +70,24 @@ TEST(SlabPartition, StoredNodesCoverTheStencilsOfTheOwnedCells) {
       << "a rank without cells (5 brick layers, 8 ranks) stores no node";
 }
 
+// The cut from per-layer counts (a re-partition's one reduction) is the cut from the particles'
+// cells, and a stored cut (first_layers, as a checkpoint keeps it) gives the same owners back.
+TEST(SlabPartition, CountsPerLayerAndStoredLayersGiveTheSameCut) {
+  const Grid<2> grid = grid_of(8, 40);  // 5 brick layers
+  std::vector<std::array<int, 2>> cells;
+  const std::vector<std::size_t> count{7, 30, 2, 0, 11};
+  for (int layer = 0; layer < 5; ++layer)
+    for (std::size_t k = 0; k < count[static_cast<std::size_t>(layer)]; ++k) cells.push_back({0, 8 * layer});
+  for (const int ranks : {1, 2, 3, 5}) {
+    const auto from_cells = SlabPartition<2>::balanced(grid, cells, ranks);
+    const auto from_counts = SlabPartition<2>::balanced(grid, count, ranks);
+    EXPECT_EQ(from_counts.first_layers(), from_cells.first_layers()) << ranks << " ranks";
+    const auto restored = SlabPartition<2>::from_first_layers(grid, from_cells.first_layers());
+    for (int j = 0; j < 40; ++j) EXPECT_EQ(restored.owner_of_cell({0, j}), from_cells.owner_of_cell({0, j}));
+  }
+  // Two ranks: 7 + 30 = 37 of 50 lie in layers 0-1; the first layer boundary with at most
+  // ceil(50 / 2) = 25 below is after layer 0 (7), so rank 0 owns layer 0 alone.
+  EXPECT_EQ(SlabPartition<2>::balanced(grid, count, 2).first_layers(), (std::vector<int>{0, 1, 5}));
+}
+
 }  // namespace

@@ -101,6 +101,8 @@ class ExplicitSolver {
     stepper_.step(h);
   }
   void after_step() { capped_.check(sim_); }
+  /// Re-partitions of a decomposed run so far (solver.rebalance).
+  [[nodiscard]] long repartitions() const { return stepper_.repartitions(); }
 
   void save(RunCounters& counters) const {
     const auto state = stepper_.state();

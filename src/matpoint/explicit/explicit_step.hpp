@@ -3,6 +3,7 @@
 // plain arrays, and the stencils are evaluated once per step and reused by every transfer.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -10,7 +11,6 @@
 #include <string>
 
 #include "matpoint/core/errors.hpp"
-#include "matpoint/explicit/deformation.hpp"
 #include "matpoint/explicit/face_contact.hpp"
 #include "matpoint/explicit/field_stencils.hpp"
 #include "matpoint/explicit/fmpm.hpp"
@@ -54,8 +54,14 @@ class ExplicitStepper {
   /// Advances the simulation by dt; throws NumericalFailure naming step, time and particle.
   void step(double dt) {
     if (s_.step % sort_interval == 0) {
-      sort_by_cell(s_.grid, s_.particles);
-      if (ranks_) ranks_->migration.sorted(s_.particles);
+      if (!ranks_) {
+        sort_by_cell(s_.grid, s_.particles);
+      } else {
+        std::vector<Index> keys;
+        sort_by_cell(s_.grid, s_.particles, &keys);
+        ranks_->migration.sorted(std::move(keys));
+        rebalance();
+      }
     }
     step_dt_ = dt;
     stencils_.evaluate(s_.grid, s_.particles);
@@ -122,6 +128,8 @@ class ExplicitStepper {
   [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
   [[nodiscard]] const HeatTransport<D>& heat() const { return heat_; }
   [[nodiscard]] const MlsStatistics& mls_statistics() const { return mls_.statistics(); }
+  /// Re-partitions of a decomposed run so far (solver.rebalance; 0 on one rank).
+  [[nodiscard]] long repartitions() const { return ranks_ ? ranks_->repartitions : 0; }
 
   /// What the stepper carries from step to step besides the Simulation (checkpoints keep it).
   struct State {
@@ -208,13 +216,52 @@ class ExplicitStepper {
     for (std::size_t p = 0; p < ps.size(); ++p) cells[p] = s_.grid.cell_coords(ps.x[p]);
     ranks_ =
         std::make_unique<Ranks>(s_.grid, SlabPartition<D>::balanced(s_.grid, cells, s_.comm.size()), s_.comm);
-    ranks_->migration.keep_own(s_.particles);
+    ranks_->migration.keep_own(s_.particles, cells);
+    claim_owned_nodes();
+    brick_schedule().boundary = &ranks_->hand_off;
+  }
+
+  /// This rank's owned nodes (the node sums it reports) under the present partition.
+  void claim_owned_nodes() {
     const auto [first, end] = ranks_->partition.owned_nodes_of(s_.comm.rank());
     const Index stride = s_.grid.stride[SlabPartition<D>::kAxis];
     s_.owned_nodes_begin = first * stride;
     s_.owned_nodes_end = end * stride;
     s_.conditions.count_only(s_.owned_nodes_begin, s_.owned_nodes_end);
-    brick_schedule().boundary = &ranks_->hand_off;
+  }
+
+  /// Load balance (docs/scale-out.md §10), at a re-sort: the particle count per brick layer of all
+  /// ranks from one reduction; when the busiest rank holds more than solver.rebalance.imbalance
+  /// times the mean, the slabs are cut anew where the particles lie and the particles move to
+  /// their new ranks (the migration, with any destination). Arrivals keep their sort keys, so the
+  /// storage order, and with it every result, stays the serial run's.
+  void rebalance() {
+    const RebalanceSpec& spec = s_.solver.rebalance;
+    if (!spec.enabled || s_.step - ranks_->partitioned_at < spec.min_steps) return;
+    constexpr int kCut = SlabPartition<D>::kAxis;
+    SlabPartition<D>& partition = ranks_->partition;
+    std::vector<double> count(static_cast<std::size_t>(BrickSchedule<D>::bricks_along(s_.grid, kCut)), 0.0);
+    for (const auto& x : s_.particles.x)
+      count[static_cast<std::size_t>(SlabPartition<D>::layer_of(s_.grid.cell_coords(x)[kCut]))] += 1.0;
+    s_.comm.sum(count);  // particle counts: exact in doubles, the same on every rank
+    std::vector<double> on_rank(static_cast<std::size_t>(s_.comm.size()), 0.0);
+    double total = 0.0;
+    for (std::size_t l = 0; l < count.size(); ++l) {
+      on_rank[static_cast<std::size_t>(partition.owner_of_layer(static_cast<int>(l)))] += count[l];
+      total += count[l];
+    }
+    const double busiest = *std::max_element(on_rank.begin(), on_rank.end());
+    if (busiest <= spec.imbalance * total / s_.comm.size()) return;
+    ranks_->partitioned_at = s_.step;  // also when the layers allow no better cut: check again later
+    std::vector<std::size_t> whole(count.size());
+    for (std::size_t l = 0; l < count.size(); ++l) whole[l] = static_cast<std::size_t>(count[l]);
+    auto cut = SlabPartition<D>::balanced(s_.grid, whole, s_.comm.size());
+    if (cut.first_layers() == partition.first_layers()) return;
+    partition = std::move(cut);  // the hand-off and the migration hold a reference to it
+    ranks_->hand_off.partition_changed();
+    claim_owned_nodes();
+    ranks_->migration.migrate(s_.particles);
+    ++ranks_->repartitions;
   }
 
   /// The stencils' particle order (of the base stencils in a multi-field run).
@@ -231,10 +278,13 @@ class ExplicitStepper {
     constexpr long kNone = std::numeric_limits<long>::max();
     const long first = s_.comm.min(pending_failure_ ? static_cast<long>(s_.comm.rank()) : kNone);
     if (first == kNone) return;
-    const int root = static_cast<int>(first);
-    const std::string entity = s_.comm.broadcast(pending_failure_ ? pending_failure_->first : "", root);
-    const std::string what = s_.comm.broadcast(pending_failure_ ? pending_failure_->second : "", root);
-    throw NumericalFailure(s_.step + 1, s_.time + step_dt_, entity, what);
+    // One broadcast of both texts, separated by a NUL (neither contains one).
+    const std::string both = s_.comm.broadcast(
+        pending_failure_ ? pending_failure_->first + '\0' + pending_failure_->second : std::string(),
+        static_cast<int>(first));
+    const std::size_t split = std::min(both.find('\0'), both.size());
+    throw NumericalFailure(s_.step + 1, s_.time + step_dt_, both.substr(0, split),
+                           split < both.size() ? both.substr(split + 1) : std::string());
   }
 
   void set_up_fields() {
@@ -375,9 +425,9 @@ class ExplicitStepper {
   }
 
   void update_strain(double dt) {
-    update_deformation(s_.particles, dt, s_.solver.deformation_update);
+    // F <- dF F (task 5) and the stress of the new F, in one pass over the particles
     const ArtificialViscosity av{s_.solver.av_linear, s_.solver.av_quadratic, s_.grid.min_cell_size()};
-    const long bad = update_stress<D>(s_.materials, s_.particles, av, dt);
+    const long bad = update_stress<D>(s_.materials, s_.particles, av, dt, s_.solver.deformation_update);
     if (heat_.active()) {  // thermoelastic coupling (heat_transport.hpp)
       heat_.thermoelastic(s_, s_.particles, dt);
       heat_.thermal_stress(s_, s_.particles);
@@ -446,6 +496,8 @@ class ExplicitStepper {
     SlabPartition<D> partition;
     ColourHandOff<D> hand_off;
     ParticleMigration<D> migration;
+    long partitioned_at = 0;  // the step of the last re-partition (0: the start)
+    long repartitions = 0;
   };
 
   Simulation<D>& s_;

@@ -169,8 +169,8 @@ Spec SpecReader::read(const json& root_json) {
   if (top.has("mesh") && top.has("grid"))
     top.optional("grid").fail("no grid with a mesh (an implicit run's particles are seeded on its mesh)");
   else if (top.has("mesh"))
-    read_mesh(
-        Object(top.required("mesh"), {"element", "min", "max", "cells", "ratio", "lines", "diagonal", "refine", "file", "dim"}));
+    read_mesh(Object(top.required("mesh"), {"element", "min", "max", "cells", "ratio", "lines", "diagonal",
+                                            "refine", "file", "dim"}));
   else
     read_grid(Object(top.required("grid"), {"dim", "min", "max", "cell_size"}));
   read_materials(top.required("materials"));
@@ -196,6 +196,7 @@ Spec SpecReader::read(const json& root_json) {
                                               "constrain_old_velocity",
                                               "artificial_viscosity",
                                               "max_energy_growth",
+                                              "rebalance",
                                               "type",
                                               "implicit",
                                               "meshfree"}));

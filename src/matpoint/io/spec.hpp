@@ -118,7 +118,8 @@ struct BodySpec {
   int core_divisions = 300;    // N_theta0, particles on the disk core's outer ring; the beam's N_H rows
   double layer_growth = 1.14;  // f: each layer 1/f as thick, f times as many particles
   double core_height = 0;      // H0, the beam's uniform core (box min/max: the beam)
-  bool gauss_points = false;  // particles at the 2- or 3-point Gauss-Legendre points per direction (particles_per_cell 2, 3)
+  bool gauss_points =
+      false;  // particles at the 2- or 3-point Gauss-Legendre points per direction (particles_per_cell 2, 3)
   // placement "gauss" on a structured T3 mesh: 3 particles per triangle, the cells split as the mesh's
   std::optional<mesh::TrianglePattern> triangle_points;
 };
@@ -161,9 +162,10 @@ struct MeshSpec {
   Triple min{}, max{};
   std::array<int, 3> cells{};  // coarse elements per direction
   Triple ratio{1, 1, 1};       // geometric growth of the element size along each axis
-  std::array<std::vector<double>, 3> lines;  // mesh.lines: the coarse lines per axis (then min, max, cells follow)
-  int refine = 0;              // uniform midpoint refinements
-  std::string file;            // a Gmsh .msh file instead of the structured mesh
+  std::array<std::vector<double>, 3>
+      lines;         // mesh.lines: the coarse lines per axis (then min, max, cells follow)
+  int refine = 0;    // uniform midpoint refinements
+  std::string file;  // a Gmsh .msh file instead of the structured mesh
   mesh::TrianglePattern diagonal = mesh::TrianglePattern::Alternating;  // T3: how the cells are split
 };
 
@@ -280,6 +282,14 @@ struct ImplicitSpec {
   } adaptive;
 };
 
+/// solver.rebalance: when a run on several MPI ranks cuts its slabs anew by particle count
+/// (docs/scale-out.md §10). The results do not depend on it: only the time they take.
+struct RebalanceSpec {
+  bool enabled = true;
+  double imbalance = 1.15;  // re-partition when the most particles on a rank exceed the mean by this factor
+  long min_steps = 100;     // and at least this many steps after the start or the last re-partition
+};
+
 struct SolverSpec {
   SolverKind kind = SolverKind::Explicit;
   [[nodiscard]] bool is_implicit() const { return kind != SolverKind::Explicit; }
@@ -309,6 +319,7 @@ struct SolverSpec {
   std::optional<double> max_energy_growth = 1.0;
   // Artificial bulk viscosity coefficients A1 (linear), A2 (quadratic); zero: off.
   double av_linear = 0.0, av_quadratic = 0.0;
+  RebalanceSpec rebalance;  // decomposed explicit runs (mpirun -n P)
 };
 
 /// output.checkpoint: when a run writes DIR/checkpoint.h5 (docs/output.md "Checkpoints and restart").

@@ -42,6 +42,9 @@ class ColourHandOff final : public BrickBoundary {
     if (below != below_ || above != above_ || peers_.empty()) build(below, above);
   }
 
+  /// The partition changed (a re-partition): the lists are rebuilt at the next agree_reach.
+  void partition_changed() { peers_.clear(); }
+
   void after_colour(int colour, const NodeArray* arrays, int count) const override {
     const auto& peers = peers_[static_cast<std::size_t>(colour)];
     if (peers.empty()) return;

@@ -10,6 +10,7 @@
 // (BrickSchedule::order_arrivals).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
@@ -31,21 +32,25 @@ class ParticleMigration {
   ParticleMigration(const Grid<D>& grid, const SlabPartition<D>& partition, const Communicator& comm)
       : grid_(grid), partition_(partition), comm_(comm) {}
 
-  /// Keeps this rank's particles of a set that every rank generated whole (storage order kept).
-  void keep_own(ParticleSet<D>& ps) {
+  /// Keeps this rank's particles of a set that every rank generated whole (storage order kept);
+  /// `cells[p]` is particle p's cell.
+  void keep_own(ParticleSet<D>& ps, const std::vector<std::array<int, D>>& cells) {
     std::vector<char> keep(ps.size());
-    for (std::size_t p = 0; p < ps.size(); ++p)
-      keep[p] = static_cast<char>(partition_.owner_of_cell(grid_.cell_coords(ps.x[p])) == comm_.rank());
+    std::vector<Index> key;
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      keep[p] = static_cast<char>(partition_.owner_of_cell(cells[p]) == comm_.rank());
+      if (keep[p] != 0) key.push_back(BrickSchedule<D>::brick_major_cell(grid_, cells[p]));
+    }
     compact(ps, keep);
-    sorted(ps);
+    key_ = std::move(key);
+    sorted_prefix_ = ps.size();
   }
 
-  /// After sort_by_cell: every particle is in (key, id) order, with key its present brick-major cell.
-  void sorted(const ParticleSet<D>& ps) {
-    key_.resize(ps.size());
-    for (std::size_t p = 0; p < ps.size(); ++p)
-      key_[p] = BrickSchedule<D>::brick_major_cell(grid_, grid_.cell_coords(ps.x[p]));
-    sorted_prefix_ = ps.size();
+  /// After sort_by_cell: every particle is in (key, id) order, with key[p] its present
+  /// brick-major cell (as sort_by_cell computed it).
+  void sorted(std::vector<Index> key) {
+    key_ = std::move(key);
+    sorted_prefix_ = key_.size();
   }
 
   /// Sends the particles whose cells another rank owns, appends those that arrive. A collective.

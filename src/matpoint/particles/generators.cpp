@@ -239,7 +239,7 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
 }
 
 template <int D>
-void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
+void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles, std::vector<Index>* sorted_cells) {
   const std::size_t n = particles.size();
   // Cells in brick-major order: the particles of a brick of the scatter's schedule lie together.
   const Index cell_count = BrickSchedule<D>::brick_major_cell_count(grid);
@@ -250,7 +250,10 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
     if (p > 0 && (cell[p] < cell[p - 1] || (cell[p] == cell[p - 1] && particles.id[p] < particles.id[p - 1])))
       sorted = false;
   }
-  if (sorted) return;
+  if (sorted) {
+    if (sorted_cells != nullptr) *sorted_cells = std::move(cell);
+    return;
+  }
   std::vector<Index> start(cell_count + 1, 0);
   for (auto c : cell) ++start[c + 1];
   for (Index c = 0; c < cell_count; ++c) start[c + 1] += start[c];
@@ -265,13 +268,17 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles) {
 
   for_each_array(particles,
                  [&order](const char*, auto& array, std::size_t count) { permute(order, array, count); });
+  if (sorted_cells != nullptr) {
+    sorted_cells->resize(n);
+    for (std::size_t q = 0; q < n; ++q) (*sorted_cells)[q] = cell[order[q]];
+  }
 }
 
 #define MATPOINT_INSTANTIATE(D)                                                                    \
   template std::size_t generate_body<D>(const BodySpec&, int, const MaterialSpec&, const Grid<D>&, \
                                         ParticleSet<D>&);                                          \
   template bool shape_contains<D>(const BodySpec&, const Vec<D>&);                                 \
-  template void sort_by_cell<D>(const Grid<D>&, ParticleSet<D>&);
+  template void sort_by_cell<D>(const Grid<D>&, ParticleSet<D>&, std::vector<Index>*);
 MATPOINT_INSTANTIATE(1)
 MATPOINT_INSTANTIATE(2)
 MATPOINT_INSTANTIATE(3)

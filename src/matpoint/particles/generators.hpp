@@ -2,6 +2,8 @@
 // grid cell (particles_per_cell per direction), and the cell sort that keeps transfers local.
 #pragma once
 
+#include <vector>
+
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/particles/particle_set.hpp"
@@ -19,8 +21,9 @@ bool shape_contains(const BodySpec& body, const Vec<D>& x);
 
 /// Sorts all particle arrays by the cell that holds them, cells in brick-major order
 /// (BrickSchedule::brick_major_cell: the particles of one brick of the scatter lie together), and
-/// by id within a cell: the resulting order does not depend on the order before.
+/// by id within a cell: the resulting order does not depend on the order before. `sorted_cells`,
+/// when given, receives each particle's brick-major cell in the new order.
 template <int D>
-void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles);
+void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles, std::vector<Index>* sorted_cells = nullptr);
 
 }  // namespace matpoint

@@ -332,13 +332,13 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
          (spec.solver.max_steps == 0 || sim.step < spec.solver.max_steps)) {
     // The solver's step (explicit: Nairn 2026 §1.8, dt = C dx / max_p max(c_p, |V_p|) from the
     // present state, or solver.dt), shortened (or stretched by at most 1e-6) to land exactly on
-    // the next output time and the end.
+    // the next output time and the end. The step's timing (particle_steps_per_second) includes it.
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
     dt = solver.time_step();
     const double target =
         spec.output.exact_times ? std::min(end_time, schedule.target_time(sim.time)) : end_time;
     const auto [h, lands] = steps_to_land(target - sim.time, dt, kEvenSteps);
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::clock_t c0 = std::clock();
     bool recorded = false;
     try {
       solver.step(h);

@@ -119,6 +119,7 @@ void SpecReader::read_solver(const Object& s) {
   read_constrain_old_velocity(s.optional("constrain_old_velocity"), out);
   read_energy_guard(s.optional("max_energy_growth"), out);
   read_artificial_viscosity(Object(s.optional("artificial_viscosity"), {"linear", "quadratic"}), out);
+  read_rebalance(s.optional("rebalance"), out);
 }
 
 /// solver.type "implicit_mpm" (Aulisa & Capodaglio's particle-Newmark MPM) or "implicit_ul"
@@ -130,9 +131,9 @@ void SpecReader::read_implicit(const Object& s) {
   if (!spec_.mesh.enabled)
     s.optional("type").fail("\"explicit\" unless the input has a mesh (solver.type \"" + type +
                             "\" runs on one)");
-  for (const char* key :
-       {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape", "mapping", "mls",
-        "deformation_update", "courant", "mass_tolerance", "constrain_old_velocity", "artificial_viscosity"})
+  for (const char* key : {"scheme", "transfer", "position_alpha", "flip_fraction", "fmpm", "xpic", "shape",
+                          "mapping", "mls", "deformation_update", "courant", "mass_tolerance",
+                          "constrain_old_velocity", "artificial_viscosity", "rebalance"})
     if (s.has(key))
       s.optional(key).fail(std::string("no ") + key + " with solver.type \"" + type +
                            "\" (an explicit solver's key)");
@@ -151,11 +152,12 @@ void SpecReader::read_implicit(const Object& s) {
   if (analysis) m.static_analysis = *analysis == "static";
   if (out.kind == SolverKind::ImplicitUl && !m.static_analysis && spec_.mesh.file.empty() &&
       spec_.mesh.element == MeshElement::Q9)
-    issues_.add("mesh.element", "\"q9\"",
-                "\"q4\" or \"hex8\" for a dynamic solver.type \"implicit_ul\" (Q9 only with implicit.analysis "
-                "\"static\"): the projection of the particles' momentum to the nodes (Iaconeta 2017 eqs. "
-                "(38)-(41)) needs shape functions >= 0, and quadratic ones are negative in places "
-                "(docs/theory/implicit.md)");
+    issues_.add(
+        "mesh.element", "\"q9\"",
+        "\"q4\" or \"hex8\" for a dynamic solver.type \"implicit_ul\" (Q9 only with implicit.analysis "
+        "\"static\"): the projection of the particles' momentum to the nodes (Iaconeta 2017 eqs. "
+        "(38)-(41)) needs shape functions >= 0, and quadratic ones are negative in places "
+        "(docs/theory/implicit.md)");
   const auto kinematics = o.optional("kinematics").string();
   if (kinematics && *kinematics != "finite" && *kinematics != "small")
     o.optional("kinematics").fail("\"finite\" or \"small\" (geometrically linear with Hooke's law)");
@@ -292,6 +294,23 @@ void SpecReader::read_energy_guard(const Value& growth, SolverSpec& out) {
     out.max_energy_growth = j.get<double>();
   else
     growth.fail("a number > 0, or \"off\"");
+}
+
+/// solver.rebalance: "off", or {"imbalance": a number > 1, "min_steps": an integer >= 1}
+/// (parallel/slab_partition.hpp; checked at every re-sort, docs/scale-out.md §10).
+void SpecReader::read_rebalance(const Value& v, SolverSpec& out) {
+  if (!v.present()) return;
+  if (v.get().is_string() && v.get().get_ref<const std::string&>() == "off") {
+    out.rebalance.enabled = false;
+    return;
+  }
+  if (!v.get().is_object()) {
+    v.fail("\"off\", or an object {\"imbalance\": a number > 1, \"min_steps\": an integer >= 1}");
+    return;
+  }
+  const Object r(v, {"imbalance", "min_steps"});
+  set_if(out.rebalance.imbalance, r.optional("imbalance").number({1, kInf, true, false}));
+  set_if(out.rebalance.min_steps, r.optional("min_steps").integer(1));
 }
 
 /// solver.constrain_old_velocity: Gong 2015's wall treatment (extraction A24): the velocity

@@ -179,6 +179,7 @@ class SpecReader {
 
   /// solver.max_energy_growth: a number > 0 (run/energy_guard.hpp), or "off".
   static void read_energy_guard(const Value& growth, SolverSpec& out);
+  static void read_rebalance(const Value& v, SolverSpec& out);
 
   /// solver.constrain_old_velocity: Gong 2015's wall treatment (extraction A24): the velocity
   /// conditions also hold on the old node velocities v(1), so a = (v+ - v) / dt and the FLIP
@@ -250,7 +251,7 @@ class SpecReader {
   int dim_ = 0;                  // grid.dim, 0 while unknown (missing or invalid)
   bool grid_ok_ = false;         // the grid has no issue: bodies can be checked against it
   bool names_complete_ = false;  // every material has a valid name: bodies' references can be checked
-  bool contact_given_ = false;    // the input has a "contact" section (valid or not)
+  bool contact_given_ = false;   // the input has a "contact" section (valid or not)
 };
 
 }  // namespace matpoint::input_detail
