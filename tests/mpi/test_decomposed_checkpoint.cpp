@@ -343,6 +343,28 @@ TEST(DecomposedCheckpoint, CheckpointOfAnotherRankCountContinuesBitForBit) {
   comm.barrier();
 }
 
+// output.checkpoint.every_minutes reads a wall clock per process: rank 0's decides, carried by the
+// step's collective. Here only rank 0's schedule makes a checkpoint due (after every step; the
+// others' is once in 1e9 minutes): every rank must write its piece at every step, or the run
+// would hang in the pieces' collective.
+TEST(DecomposedCheckpoint, WallClockCheckpointIsRankZerosDecision) {
+  const Communicator comm = Communicator::world();
+  if (!comm.distributed()) GTEST_SKIP() << "needs several ranks";
+  Spec spec = parse_spec(kTwoDisks);
+  spec.solver.max_steps = 5;
+  spec.output.checkpoint = {0, comm.rank() == 0 ? 1e-12 : 1e9};
+  const fs::path dir = scratch("minutes", comm);
+  const RunResult result = run_in(spec, dir);
+  ASSERT_EQ(result.exit_code, 0) << result.message;
+  EXPECT_EQ(result.summary["checkpoint_step"], 5);
+  comm.barrier();
+  EXPECT_EQ(Hdf5Reader(dir / kCheckpointFile).integer("simulation/step"), 5);
+  EXPECT_EQ(Hdf5Reader(dir / kPreviousCheckpointFile).integer("simulation/step"), 4);
+  EXPECT_TRUE(fs::exists(dir / checkpoint_piece_name(4, comm.rank())));
+  EXPECT_EQ(piece_files(dir), 2L * comm.size()) << "the pieces of steps 1 to 3 are deleted";
+  comm.barrier();
+}
+
 /// Every rank reads; one rank's damaged piece makes every rank throw the same InputError (none is
 /// left waiting in the run's first collective).
 TEST(DecomposedCheckpoint, DamagedPieceOfOneRankIsRefusedOnEveryRank) {
