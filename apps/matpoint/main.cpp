@@ -123,9 +123,11 @@ void separate_rank_outputs(RunOptions& options) {
   options.progress = false;
 }
 
-/// A decomposed run's rank r > 0: the run, and only its exit code (rank 0 reports).
+/// A decomposed run's rank r > 0: the run, and only its exit code (rank 0 reports). mpirun passes
+/// SIGINT / SIGTERM to every rank: each finishes the step, and they checkpoint together.
 int run_quietly(const Spec& spec, const RunOptions& options) {
   try {
+    install_interrupt_handlers();
     return run_explicit(spec, options).exit_code;
   } catch (const InputError&) {
     return kExitBadInput;  // rank 0 reports it
@@ -144,10 +146,6 @@ int command_run(const std::string& input, RunOptions options, bool overwrite) {
   const Communicator comm = Communicator::world();
   const bool decomposed = comm.distributed() && !spec.solver.is_implicit();
   if (!decomposed) separate_rank_outputs(options);
-  if (decomposed && !options.restart.empty())
-    return report_input_error(
-        InputError({{"--restart", options.restart.string(),
-                     "a run on 1 rank: restarting a decomposed run is not built yet"}}));
   const bool talks = comm.rank() == 0 || !decomposed;
   if (!talks) options.progress = false;
   // A restart continues in its checkpoint's folder; any other folder is checked like a fresh run's.
@@ -170,9 +168,11 @@ int command_run(const std::string& input, RunOptions options, bool overwrite) {
       const std::string checkpoint = result.summary.value("checkpoint", nlohmann::json()).is_string()
                                          ? result.summary["checkpoint"].get<std::string>()
                                          : (options.out_dir / kCheckpointFile).string();
-      std::fprintf(stderr, "%s\nthe whole command: matpoint run %s --restart %s --out %s\n",
-                   result.message.c_str(), shell_word(input).c_str(), shell_word(checkpoint).c_str(),
-                   shell_word(options.out_dir.string()).c_str());
+      const std::string mpirun =
+          decomposed ? "mpirun -n " + std::to_string(comm.size()) + " " : std::string();
+      std::fprintf(stderr, "%s\nthe whole command: %smatpoint run %s --restart %s --out %s\n",
+                   result.message.c_str(), mpirun.c_str(), shell_word(input).c_str(),
+                   shell_word(checkpoint).c_str(), shell_word(options.out_dir.string()).c_str());
       return result.exit_code;
     }
     if (result.exit_code != kExitOk) {

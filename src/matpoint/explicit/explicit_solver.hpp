@@ -111,10 +111,18 @@ class ExplicitSolver {
     counters.fmpm_loops = state.fmpm.loops;
     counters.fmpm_passes = state.fmpm.passes;
     counters.fmpm_seconds = state.fmpm.seconds;
+    counters.partition = state.partition;
+    counters.sort_keys.assign(state.sort_keys.begin(), state.sort_keys.end());
+    counters.sorted_prefix = state.sorted_prefix;
   }
   void restore(const RunCounters& c) {
     sim_.particles.recorded_wave_speed = -1.0;  // F and state were read from the checkpoint
-    stepper_.restore({c.next_fmpm_time, c.total_mass, {c.fmpm_loops, c.fmpm_passes, c.fmpm_seconds}});
+    stepper_.restore({c.next_fmpm_time,
+                      c.total_mass,
+                      {c.fmpm_loops, c.fmpm_passes, c.fmpm_seconds},
+                      c.partition,
+                      std::vector<Index>(c.sort_keys.begin(), c.sort_keys.end()),
+                      c.sorted_prefix});
   }
 
   /// Coupled heat (HeatSpec) adds its columns (docs/output.md): the largest and the mean particle

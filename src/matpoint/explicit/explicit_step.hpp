@@ -134,14 +134,33 @@ class ExplicitStepper {
   /// What the stepper carries from step to step besides the Simulation (checkpoints keep it).
   struct State {
     double next_fmpm_time = 0.0;  // periodic FMPM
-    double total_mass = 0.0;      // summed in the particle order of the first step
+    double total_mass = 0.0;      // summed in the particle order of the first step (this rank's)
     FmpmStatistics fmpm;
+    // A decomposed run: the partition (SlabPartition::first_layers) and this rank's migration
+    // state, by which the particles that arrived since the last sort take the serial order.
+    std::vector<int> partition;
+    std::vector<Index> sort_keys;
+    std::size_t sorted_prefix = 0;
   };
-  [[nodiscard]] State state() const { return {next_fmpm_time_, total_mass_, fmpm_.statistics()}; }
+  [[nodiscard]] State state() const {
+    State out{next_fmpm_time_, total_mass_, fmpm_.statistics(), {}, {}, 0};
+    if (ranks_) {
+      out.partition = ranks_->partition.first_layers();
+      out.sort_keys = ranks_->migration.keys();
+      out.sorted_prefix = ranks_->migration.sorted_prefix();
+    }
+    return out;
+  }
+  /// A restart: the Simulation holds the checkpoint's particles (this rank's, in their stored
+  /// order); a decomposed run takes the stored partition, not a recomputed one.
   void restore(const State& state) {
     next_fmpm_time_ = state.next_fmpm_time;
     total_mass_ = state.total_mass;
     fmpm_.restore_statistics(state.fmpm);
+    if (ranks_ && !state.partition.empty()) {
+      use_partition(SlabPartition<D>::from_first_layers(s_.grid, state.partition));
+      ranks_->migration.restore(state.sort_keys, state.sorted_prefix);
+    }
   }
 
  private:
@@ -214,9 +233,13 @@ class ExplicitStepper {
     const auto& ps = s_.particles;
     std::vector<std::array<int, D>> cells(ps.size());
     for (std::size_t p = 0; p < ps.size(); ++p) cells[p] = s_.grid.cell_coords(ps.x[p]);
-    ranks_ =
-        std::make_unique<Ranks>(s_.grid, SlabPartition<D>::balanced(s_.grid, cells, s_.comm.size()), s_.comm);
+    use_partition(SlabPartition<D>::balanced(s_.grid, cells, s_.comm.size()));
     ranks_->migration.keep_own(s_.particles, cells);
+  }
+
+  /// The partition's hand-off, migration and owned nodes (the particles are left as they are).
+  void use_partition(SlabPartition<D> partition) {
+    ranks_ = std::make_unique<Ranks>(s_.grid, std::move(partition), s_.comm);
     claim_owned_nodes();
     brick_schedule().boundary = &ranks_->hand_off;
   }

@@ -1,14 +1,21 @@
 #include "matpoint/io/checkpoint.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 #include <limits>
+#include <regex>
+#include <set>
 #include <sstream>
+#include <stdexcept>
+#include <type_traits>
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/core/version.hpp"
+#include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/io/atomic_file.hpp"
 #include "matpoint/io/hdf5_file.hpp"
+#include "matpoint/parallel/slab_partition.hpp"
 
 namespace matpoint {
 
@@ -18,6 +25,7 @@ using Shape = std::vector<hsize_t>;
 using json = nlohmann::json;
 
 constexpr const char* kFormat = "matpoint checkpoint";
+constexpr const char* kPieceFormat = "matpoint checkpoint piece";  // one rank's part (docs/scale-out.md §9)
 // time, step, 3 energies, momentum[3], impulse[3], min J, rms dv, grid momentum difference[3],
 // checkerboard velocity, grid rms velocity, hourglass energy
 constexpr std::size_t kSampleColumns = 22;
@@ -276,20 +284,22 @@ void check_same_physics(const std::filesystem::path& file, const json& written, 
                      "solver.end_time and solver.max_steps (docs/output.md)"}});
 }
 
-// --- the file ---
+// --- the file's parts: the header, the particles, the simulation's and the run's counters, the
+// history; a one-rank checkpoint has them all, a decomposed run's piece all but the history and its
+// manifest all but the particles (docs/scale-out.md §9) ---
 
-template <int D>
-void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& run, const History& history,
-                    const json& input) {
-  const auto& ps = sim.particles;
-  const hsize_t n = h(ps.size());
-  w.write("format", std::string(kFormat));
+void write_header(Hdf5Writer& w, const std::string& format, int dimension, const json& input) {
+  w.write("format", format);
   w.write("format_version", std::int64_t{kCheckpointFormatVersion});
   w.write("matpoint_version", std::string(kVersion));
-  w.write("dimension", std::int64_t{D});
+  w.write("dimension", std::int64_t{dimension});
   w.write("input", input.dump());
   w.write("physics_hash", physics_hash(input));
+}
 
+template <int D>
+void write_particles(Hdf5Writer& w, const ParticleSet<D>& ps) {
+  const hsize_t n = h(ps.size());
   w.write("particles/x", flat(ps.x), {n, D});
   w.write("particles/v", flat(ps.v), {n, D});
   w.write("particles/mass", ps.mass, {n});
@@ -310,7 +320,10 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
     for (const auto& x : c) corners.insert(corners.end(), x.data(), x.data() + D);
   w.write("particles/corners", corners, {h(ps.corners.size()), ParticleSet<D>::kCorners, D});
   w.write("particles/temperature", ps.temperature, {h(ps.temperature.size())});  // coupled heat only
+}
 
+template <int D>
+void write_simulation(Hdf5Writer& w, const Simulation<D>& sim) {
   w.write("simulation/time", sim.time);
   w.write("simulation/last_dt", sim.last_dt);
   w.write("simulation/step", std::int64_t{sim.step});
@@ -322,9 +335,9 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   w.write("simulation/grid_momentum_difference",
           std::vector<double>(sim.grid_momentum_difference.data(), sim.grid_momentum_difference.data() + D),
           {D});
-  w.write("simulation/initial_velocity", flat(by_id(ps, ps.v0)), {n, D});
-  w.write("simulation/initial_position", flat(by_id(ps, ps.x0)), {n, D});
+}
 
+void write_run(Hdf5Writer& w, const RunCounters& run) {
   w.write("run/dt", run.dt);
   w.write("run/momentum_scale", run.momentum_scale);
   w.write("run/total_mass", run.total_mass);
@@ -341,18 +354,77 @@ void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   w.write("run/threads", std::int64_t{run.threads});
   write_pvd(w, "run/results_pvd", run.results);
   write_pvd(w, "run/domains_pvd", run.domains);
+  write_solver_state(w, run);
+}
 
+void write_history(Hdf5Writer& w, const History& history) {
   const std::size_t width = kSampleColumns + kBodyColumns * static_cast<std::size_t>(history.body_count);
   w.write("history/body_count", std::int64_t{history.body_count});
   w.write("history/samples", history_rows(history), {h(history.samples.size()), h(width)});
   write_column_rows(w, history, probe_group(history));
   write_column_rows(w, history, solver_group(history));
-  write_solver_state(w, run);
 }
 
 template <int D>
-void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, History& history) {
-  auto& ps = sim.particles;
+void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& run, const History& history,
+                    const json& input) {
+  const auto& ps = sim.particles;
+  const hsize_t n = h(ps.size());
+  write_header(w, kFormat, D, input);
+  write_particles(w, ps);
+  write_simulation(w, sim);
+  w.write("simulation/initial_velocity", flat(by_id(ps, ps.v0)), {n, D});
+  w.write("simulation/initial_position", flat(by_id(ps, ps.x0)), {n, D});
+  write_run(w, run);
+  write_history(w, history);
+}
+
+/// Rank r's piece of a decomposed run's checkpoint: its particles in storage order (X_p and V_p(0)
+/// too, in the same order), its own sums and counters, and its migration state.
+template <int D>
+void write_piece(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& run, const json& input) {
+  const auto& ps = sim.particles;
+  const hsize_t n = h(ps.size());
+  write_header(w, kPieceFormat, D, input);
+  write_particles(w, ps);
+  w.write("particles/initial_velocity", flat(ps.v0), {n, D});
+  w.write("particles/initial_position", flat(ps.x0), {n, D});
+  write_simulation(w, sim);
+  write_run(w, run);
+  w.write("parallel/rank", std::int64_t{sim.comm.rank()});
+  w.write("parallel/ranks", std::int64_t{sim.comm.size()});
+  if (run.sort_keys.size() != ps.size())
+    throw std::logic_error("checkpoint: " + std::to_string(run.sort_keys.size()) + " sort keys for " +
+                           std::to_string(ps.size()) + " particles");
+  w.write("parallel/sort_keys", run.sort_keys, {n});
+  w.write("parallel/sorted_prefix", static_cast<std::int64_t>(run.sorted_prefix));
+}
+
+/// A decomposed run's manifest: the state every rank shares (rank 0's run counters), the history,
+/// the rank count, the partition and the pieces' names by rank.
+template <int D>
+void write_manifest(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& run, const History& history,
+                    const json& input) {
+  write_header(w, kFormat, D, input);
+  w.write("simulation/time", sim.time);
+  w.write("simulation/last_dt", sim.last_dt);
+  w.write("simulation/step", std::int64_t{sim.step});
+  write_run(w, run);
+  write_history(w, history);
+  const int ranks = sim.comm.size();
+  if (run.partition.size() != static_cast<std::size_t>(ranks) + 1)
+    throw std::logic_error("checkpoint: a partition of " + std::to_string(run.partition.size()) +
+                           " entries for " + std::to_string(ranks) + " ranks");
+  std::vector<std::string> pieces;
+  for (int r = 0; r < ranks; ++r) pieces.push_back(checkpoint_piece_name(sim.step, r));
+  w.write("parallel/ranks", std::int64_t{ranks});
+  w.write("parallel/partition", convert<std::int32_t>(run.partition), {h(run.partition.size())});
+  w.write("parallel/pieces", joined(pieces));
+}
+
+/// Returns the particle count.
+template <int D>
+hsize_t read_particles(const Hdf5Reader& r, ParticleSet<D>& ps, bool heat) {
   const auto xs = r.shape("particles/x");
   if (xs.size() != 2 || xs[1] != D) throw Hdf5Error("dataset particles/x is not an n x D array");
   const hsize_t n = xs[0];
@@ -377,8 +449,12 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   for (std::size_t p = 0; p < ps.corners.size(); ++p)
     for (int k = 0; k < ParticleSet<D>::kCorners; ++k)
       for (int a = 0; a < D; ++a) ps.corners[p][k][a] = corners[(p * ParticleSet<D>::kCorners + k) * D + a];
-  ps.temperature = r.doubles("particles/temperature", {sim.heat.enabled ? n : 0});
+  ps.temperature = r.doubles("particles/temperature", {heat ? n : 0});
+  return n;
+}
 
+template <int D>
+void read_simulation(const Hdf5Reader& r, Simulation<D>& sim) {
   sim.time = r.number("simulation/time");
   sim.last_dt = r.number("simulation/last_dt");
   sim.step = r.integer("simulation/step");
@@ -389,12 +465,9 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   for (int a = 0; a < D; ++a) sim.external_impulse[a] = impulse[a];
   const auto difference = r.doubles("simulation/grid_momentum_difference", {D});
   for (int a = 0; a < D; ++a) sim.grid_momentum_difference[a] = difference[a];
-  std::vector<Vec<D>> by_id_values;
-  unflat(r.doubles("simulation/initial_velocity", {n, D}), by_id_values);
-  from_id(ps, by_id_values, ps.v0);
-  unflat(r.doubles("simulation/initial_position", {n, D}), by_id_values);
-  from_id(ps, by_id_values, ps.x0);
+}
 
+void read_run(const Hdf5Reader& r, RunCounters& run) {
   run.dt = r.number("run/dt");
   run.momentum_scale = r.number("run/momentum_scale");
   run.total_mass = r.number("run/total_mass");
@@ -411,7 +484,10 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   run.threads = static_cast<int>(r.integer("run/threads"));
   run.results = read_pvd(r, "run/results_pvd");
   run.domains = read_pvd(r, "run/domains_pvd");
+  read_solver_state(r, run);
+}
 
+void read_history(const Hdf5Reader& r, History& history) {
   const auto bodies = r.integer("history/body_count");
   if (bodies != history.body_count)
     throw Hdf5Error("history/body_count is " + std::to_string(bodies) + ", the input has " +
@@ -422,7 +498,20 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   history.samples = history_samples(r.doubles("history/samples", rows), rows[0], history.body_count);
   read_column_rows(r, history, probe_group(history));
   read_column_rows(r, history, solver_group(history));
-  read_solver_state(r, run);
+}
+
+template <int D>
+void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, History& history) {
+  auto& ps = sim.particles;
+  const hsize_t n = read_particles(r, sim.particles, sim.heat.enabled);
+  read_simulation(r, sim);
+  std::vector<Vec<D>> by_id_values;
+  unflat(r.doubles("simulation/initial_velocity", {n, D}), by_id_values);
+  from_id(ps, by_id_values, ps.v0);
+  unflat(r.doubles("simulation/initial_position", {n, D}), by_id_values);
+  from_id(ps, by_id_values, ps.x0);
+  read_run(r, run);
+  read_history(r, history);
 }
 
 InputError damaged(const std::filesystem::path& file, const std::string& what) {
@@ -431,7 +520,293 @@ InputError damaged(const std::filesystem::path& file, const std::string& what) {
                           ", with the one before it kept as " + kPreviousCheckpointFile + ")"}});
 }
 
+/// Format, version, dimension and physics of a checkpoint or piece: Hdf5Error (damaged) or
+/// InputError (other physics).
+void check_header(const Hdf5Reader& r, const std::filesystem::path& file, const std::string& format, int D,
+                  const json& input) {
+  if (!r.has("format")) throw Hdf5Error("it is not a matpoint checkpoint");
+  const std::string found = r.text("format");
+  if (found == kPieceFormat && format != kPieceFormat)
+    throw Hdf5Error("it is one rank's piece of a decomposed run's checkpoint; restart from the " +
+                    std::string(kCheckpointFile) + " that names it");
+  if (found != format) throw Hdf5Error("it is not a " + format);
+  const auto version = r.integer("format_version");
+  if (version != kCheckpointFormatVersion)
+    throw Hdf5Error("format version " + std::to_string(version) + ", this matpoint reads version " +
+                    std::to_string(kCheckpointFormatVersion));
+  const auto dim = r.integer("dimension");
+  if (dim != D)
+    throw Hdf5Error("a " + std::to_string(dim) + "-D run, the input is " + std::to_string(D) + "-D");
+  json written;
+  try {
+    written = json::parse(r.text("input"));
+  } catch (const json::exception&) {
+    throw Hdf5Error("dataset input is not JSON");
+  }
+  check_same_physics(file, written, input);  // InputError: passes through
+}
+
+std::filesystem::path folder_of(const std::filesystem::path& file) {
+  return file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+}
+
+/// Renames the complete, fsynced `partial` onto `file`, the present `file` becoming `previous` (a
+/// second name for the same file first, so that `file` never goes missing).
+void replace_keeping_previous(const std::filesystem::path& partial, const std::filesystem::path& file,
+                              const std::filesystem::path& previous) {
+  std::error_code ec;
+  if (std::filesystem::exists(file, ec)) {
+    const std::filesystem::path link = previous.string() + ".partial";
+    std::filesystem::remove(link, ec);
+    std::filesystem::create_hard_link(file, link, ec);
+    if (ec) std::filesystem::copy_file(file, link, std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::rename(link, previous);
+  }
+  std::filesystem::rename(partial, file);
+  sync_to_disk(folder_of(file));
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+/// The end of one part of a collective write or read: when a rank failed, every rank throws the
+/// error of the lowest failing rank (`error`: this rank's, empty when it succeeded).
+struct Settled {
+  int rank = -1;  // the lowest failing rank; -1: none failed
+  std::string error;
+};
+Settled settle(const Communicator& comm, const std::string& error) {
+  constexpr long kNone = std::numeric_limits<long>::max();
+  const long first = comm.min(error.empty() ? kNone : static_cast<long>(comm.rank()));
+  if (first == kNone) return {};
+  return {static_cast<int>(first), comm.broadcast(error, static_cast<int>(first))};
+}
+
+void settle_write(const Communicator& comm, const std::string& error, const std::string& what) {
+  if (const Settled s = settle(comm, error); s.rank >= 0)
+    throw std::runtime_error("rank " + std::to_string(s.rank) + " could not write " + what + ": " + s.error);
+}
+
+/// After a new manifest: deletes the pieces (and .partial leftovers of killed runs) of steps
+/// before `step` that neither `file` nor `previous` names. Later steps' pieces are left alone
+/// (another rank may be writing its next one already). Never throws.
+void remove_unnamed_pieces(const std::filesystem::path& file, const std::filesystem::path& previous,
+                           long step) {
+  std::set<std::string> named;
+  for (const auto& manifest : {file, previous}) {
+    try {
+      const Hdf5Reader r(manifest);
+      if (r.has("parallel/pieces"))
+        for (auto& name : lines_of(r.text("parallel/pieces"))) named.insert(std::move(name));
+    } catch (const std::exception&) {
+      // a missing or damaged manifest names nothing
+    }
+  }
+  static const std::regex piece(R"(checkpoint\.s(\d+)\.r\d+\.h5(\.partial)?)");
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder_of(file), ec)) {
+    const std::string name = entry.path().filename().string();
+    std::smatch m;
+    if (!std::regex_match(name, m, piece) || named.contains(name) || std::stol(m[1].str()) >= step) continue;
+    std::filesystem::remove(entry.path(), ec);
+  }
+}
+
+/// Rank r's part of a decomposed run's checkpoint: its piece, named by the manifest `r`.
+template <int D>
+void read_piece(const Hdf5Reader& manifest, const std::filesystem::path& file, const json& input,
+                Simulation<D>& sim, RunCounters& run) {
+  const int ranks = sim.comm.size(), rank = sim.comm.rank();
+  const auto pieces = lines_of(manifest.text("parallel/pieces"));
+  if (pieces.size() != static_cast<std::size_t>(ranks))
+    throw Hdf5Error("dataset parallel/pieces names " + std::to_string(pieces.size()) + " pieces for " +
+                    std::to_string(ranks) + " ranks");
+  auto partition =
+      convert<int>(manifest.int32s("parallel/partition", {h(static_cast<std::size_t>(ranks) + 1)}));
+  const int layers = BrickSchedule<D>::bricks_along(sim.grid, D - 1);
+  if (partition.front() != 0 || partition.back() != layers ||
+      !std::is_sorted(partition.begin(), partition.end()))
+    throw Hdf5Error("dataset parallel/partition is not a cut of the grid's " + std::to_string(layers) +
+                    " brick layers");
+  const long step = manifest.integer("simulation/step");
+  const std::filesystem::path file_of_piece = folder_of(file) / pieces[static_cast<std::size_t>(rank)];
+  try {
+    const Hdf5Reader r(file_of_piece);
+    check_header(r, file_of_piece, kPieceFormat, D, input);
+    if (r.integer("parallel/rank") != rank || r.integer("parallel/ranks") != ranks)
+      throw Hdf5Error("the piece of another rank or rank count");
+    if (r.integer("simulation/step") != step)
+      throw Hdf5Error("a piece of step " + std::to_string(r.integer("simulation/step")) +
+                      ", the manifest's is " + std::to_string(step));
+    auto& ps = sim.particles;
+    const hsize_t n = read_particles(r, sim.particles, sim.heat.enabled);
+    unflat(r.doubles("particles/initial_velocity", {n, D}), ps.v0);
+    unflat(r.doubles("particles/initial_position", {n, D}), ps.x0);
+    read_simulation(r, sim);
+    read_run(r, run);  // this rank's counters (total mass, timings, FMPM statistics)
+    run.sort_keys = r.int64s("parallel/sort_keys", {n});
+    const auto prefix = r.integer("parallel/sorted_prefix");
+    if (prefix < 0 || static_cast<hsize_t>(prefix) > n)
+      throw Hdf5Error("dataset parallel/sorted_prefix is out of range");
+    run.sorted_prefix = static_cast<std::size_t>(prefix);
+    run.partition = std::move(partition);
+  } catch (const Hdf5Error& e) {
+    throw damaged(file_of_piece, e.what());
+  }
+}
+
+/// Appends the particles `which` of `from` to `to` (every array of for_each_array; both sets
+/// have the same arrays in use).
+template <int D>
+void append_particles(ParticleSet<D>& to, const ParticleSet<D>& from, const std::vector<std::size_t>& which) {
+  int k = 0;
+  for_each_array(to, [&](const char*, auto& out, std::size_t count) {
+    int j = 0;
+    for_each_array(from, [&](const char*, const auto& in, std::size_t) {
+      if (j++ != k) return;
+      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(in)>, std::remove_cvref_t<decltype(out)>>)
+        for (const std::size_t p : which)
+          out.insert(out.end(), in.begin() + static_cast<std::ptrdiff_t>(p * count),
+                     in.begin() + static_cast<std::ptrdiff_t>((p + 1) * count));
+    });
+    ++k;
+  });
+}
+
+/// A checkpoint of `written` ranks read on this run's other number of ranks (docs/scale-out.md §9):
+/// every rank reads every piece (a one-rank checkpoint: the whole file), the slab partition is
+/// balanced anew over the checkpoint's particles, and each rank keeps the particles of its cells
+/// in (sort key, id) order, which is the order in which every run, on any rank count, visits a
+/// brick's particles (BrickSchedule::order_arrivals); so the particles continue bit for bit, and
+/// the sums over particles (history) differ in round-off as between any two rank counts. The
+/// sums each rank accumulates (external work, impulse, friction work) go to rank 0; the run
+/// counters are the manifest's.
+template <int D>
+void read_redistributed(const Hdf5Reader& manifest, const std::filesystem::path& file, const json& input,
+                        long written, Simulation<D>& sim, RunCounters& run) {
+  const bool heat = sim.heat.enabled;
+  ParticleSet<D> all;
+  all.has_temperature = heat;
+  std::vector<Index> keys;
+  double external_work = 0.0, friction_work = 0.0, boundary_heat = 0.0;
+  Vec<D> impulse = Vec<D>::Zero();
+  const auto add_sums = [&](const Hdf5Reader& r) {  // a rank's (or the one rank's) own sums
+    external_work += r.number("simulation/external_work");
+    friction_work += r.number("simulation/friction_work");
+    boundary_heat += r.number("simulation/boundary_heat");
+    const auto rank_impulse = r.doubles("simulation/external_impulse", {D});
+    for (int a = 0; a < D; ++a) impulse[a] += rank_impulse[a];
+  };
+  if (written == 1) {  // the serial storage order is the (key, id) order: key = the storage index
+    const hsize_t n = read_particles(manifest, all, heat);
+    std::vector<Vec<D>> by_id_values;
+    unflat(manifest.doubles("simulation/initial_velocity", {n, D}), by_id_values);
+    from_id(all, by_id_values, all.v0);
+    unflat(manifest.doubles("simulation/initial_position", {n, D}), by_id_values);
+    from_id(all, by_id_values, all.x0);
+    add_sums(manifest);
+    for (std::size_t p = 0; p < n; ++p) keys.push_back(static_cast<Index>(p));
+  } else {
+    const auto pieces = lines_of(manifest.text("parallel/pieces"));
+    if (pieces.size() != static_cast<std::size_t>(written))
+      throw Hdf5Error("dataset parallel/pieces names " + std::to_string(pieces.size()) + " pieces for " +
+                      std::to_string(written) + " ranks");
+    const long step = manifest.integer("simulation/step");
+    for (long k = 0; k < written; ++k) {
+      const std::filesystem::path file_of_piece = folder_of(file) / pieces[static_cast<std::size_t>(k)];
+      try {
+        const Hdf5Reader r(file_of_piece);
+        check_header(r, file_of_piece, kPieceFormat, D, input);
+        if (r.integer("parallel/rank") != k || r.integer("parallel/ranks") != written)
+          throw Hdf5Error("the piece of another rank or rank count");
+        if (r.integer("simulation/step") != step)
+          throw Hdf5Error("a piece of another step than the manifest's");
+        ParticleSet<D> part;
+        part.has_temperature = heat;
+        const hsize_t n = read_particles(r, part, heat);
+        unflat(r.doubles("particles/initial_velocity", {n, D}), part.v0);
+        unflat(r.doubles("particles/initial_position", {n, D}), part.x0);
+        const auto part_keys = r.int64s("parallel/sort_keys", {n});
+        keys.insert(keys.end(), part_keys.begin(), part_keys.end());
+        add_sums(r);
+        if (k == 0) all.state_stride = part.state_stride, all.track_corners = part.track_corners;
+        std::vector<std::size_t> every(n);
+        for (std::size_t p = 0; p < every.size(); ++p) every[p] = p;
+        append_particles(all, part, every);
+      } catch (const Hdf5Error& e) {
+        throw damaged(file_of_piece, e.what());
+      }
+    }
+  }
+  // The partition of the present particles, and this rank's of them in (key, id) order.
+  std::vector<std::array<int, D>> cells(all.size());
+  for (std::size_t p = 0; p < all.size(); ++p) cells[p] = sim.grid.cell_coords(all.x[p]);
+  const auto partition = SlabPartition<D>::balanced(sim.grid, cells, sim.comm.size());
+  std::vector<std::size_t> mine;
+  for (std::size_t p = 0; p < all.size(); ++p)
+    if (partition.owner_of_cell(cells[p]) == sim.comm.rank()) mine.push_back(p);
+  std::sort(mine.begin(), mine.end(), [&](std::size_t a, std::size_t b) {
+    return keys[a] != keys[b] ? keys[a] < keys[b] : all.id[a] < all.id[b];
+  });
+  auto& ps = sim.particles;
+  ps.state_stride = all.state_stride, ps.track_corners = all.track_corners;
+  for_each_array(ps, [](const char*, auto& array, std::size_t) { array.clear(); });
+  append_particles(ps, all, mine);
+  run.partition = partition.first_layers();
+  run.sort_keys.clear();
+  for (const std::size_t p : mine) run.sort_keys.push_back(keys[p]);
+  run.sorted_prefix = mine.size();
+  run.total_mass = 0.0;  // this rank's, as the stepper sums it at the start (gravity's impulse)
+  for (std::size_t p = 0; p < ps.size(); ++p)
+    if (sim.rigid_material.empty() || !sim.rigid_material[ps.material[p]]) run.total_mass += ps.mass[p];
+  const bool first = sim.comm.rank() == 0;
+  sim.external_work = first ? external_work : 0.0, sim.friction_work = first ? friction_work : 0.0;
+  sim.boundary_heat = first ? boundary_heat : 0.0;
+  sim.external_impulse = first ? impulse : Vec<D>::Zero();
+  sim.grid_momentum_difference.setZero();  // recomputed by the next scatter
+}
+
+/// This rank's whole read: the checkpoint of a one-rank run, or the manifest and this rank's piece.
+template <int D>
+void read_on_this_rank(const std::filesystem::path& file, const json& input, Simulation<D>& sim,
+                       RunCounters& run, History& history) {
+  try {
+    const Hdf5Reader r(file);
+    check_header(r, file, kFormat, D, input);
+    const long ranks = r.has("parallel/ranks") ? r.integer("parallel/ranks") : 1;
+    if (ranks != sim.comm.size()) {  // written on another rank count: redistributed
+      read_history(r, history);
+      read_run(r, run);
+      read_redistributed<D>(r, file, input, ranks, sim, run);
+      sim.time = r.number("simulation/time");
+      sim.last_dt = r.number("simulation/last_dt");
+      sim.step = r.integer("simulation/step");
+      return;
+    }
+    if (ranks == 1) {
+      read_contents<D>(r, sim, run, history);
+      return;
+    }
+    read_history(r, history);
+    read_piece<D>(r, file, input, sim, run);  // InputError: names the piece
+    sim.time = r.number("simulation/time");   // the manifest's (equal to the piece's)
+    sim.last_dt = r.number("simulation/last_dt");
+  } catch (const Hdf5Error& e) {
+    throw damaged(file, e.what());
+  }
+}
+
 }  // namespace
+
+std::string checkpoint_piece_name(long step, int rank) {
+  char name[64];
+  std::snprintf(name, sizeof name, "checkpoint.s%08ld.r%04d.h5", step, rank);
+  return name;
+}
 
 json physics_of(const json& input) {
   json physics = input;
@@ -456,50 +831,78 @@ void write_checkpoint(const std::filesystem::path& file, const std::filesystem::
                       const Simulation<D>& sim, const RunCounters& run, const History& history,
                       const json& input) {
   const std::filesystem::path partial = file.string() + ".partial";
-  {
-    Hdf5Writer w(partial);
-    write_contents<D>(w, sim, run, history, input);
-    w.close();
+  const Communicator& comm = sim.comm;
+  if (!comm.distributed()) {
+    {
+      Hdf5Writer w(partial);
+      write_contents<D>(w, sim, run, history, input);
+      w.close();
+    }
+    sync_to_disk(partial);
+    replace_keeping_previous(partial, file, previous);
+    return;
   }
-  sync_to_disk(partial);
-  // Keep the current checkpoint as `previous` (a second name for the same file, so `file` never
-  // goes missing), then move the new one onto `file`.
-  std::error_code ec;
-  if (std::filesystem::exists(file, ec)) {
-    const std::filesystem::path link = previous.string() + ".partial";
-    std::filesystem::remove(link, ec);
-    std::filesystem::create_hard_link(file, link, ec);
-    if (ec) std::filesystem::copy_file(file, link, std::filesystem::copy_options::overwrite_existing);
-    std::filesystem::rename(link, previous);
+  // Every piece is complete on the disk before the manifest names it; until the new manifest
+  // takes the name `file`, the one it replaces and its pieces stay untouched.
+  std::string error;
+  try {
+    const std::filesystem::path piece = folder_of(file) / checkpoint_piece_name(sim.step, comm.rank());
+    const std::filesystem::path piece_partial = piece.string() + ".partial";
+    {
+      Hdf5Writer w(piece_partial);
+      write_piece<D>(w, sim, run, input);
+      w.close();
+    }
+    sync_to_disk(piece_partial);
+    std::filesystem::rename(piece_partial, piece);
+    sync_to_disk(folder_of(file));
+  } catch (const std::exception& e) {
+    error = e.what();
   }
-  std::filesystem::rename(partial, file);
-  sync_to_disk(file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
+  settle_write(comm, error, "its checkpoint piece");
+  if (comm.rank() == 0) {
+    try {
+      {
+        Hdf5Writer w(partial);
+        write_manifest<D>(w, sim, run, history, input);
+        w.close();
+      }
+      sync_to_disk(partial);
+      replace_keeping_previous(partial, file, previous);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  settle_write(comm, error, "the checkpoint manifest " + file.string());
+  if (comm.rank() == 0) remove_unnamed_pieces(file, previous, sim.step);
 }
 
 template <int D>
 void read_checkpoint(const std::filesystem::path& file, const json& input, Simulation<D>& sim,
                      RunCounters& run, History& history) {
-  try {
-    const Hdf5Reader r(file);
-    if (!r.has("format") || r.text("format") != kFormat) throw Hdf5Error("it is not a matpoint checkpoint");
-    const auto version = r.integer("format_version");
-    if (version != kCheckpointFormatVersion)
-      throw Hdf5Error("format version " + std::to_string(version) + ", this matpoint reads version " +
-                      std::to_string(kCheckpointFormatVersion));
-    const auto dim = r.integer("dimension");
-    if (dim != D)
-      throw Hdf5Error("a " + std::to_string(dim) + "-D run, the input is " + std::to_string(D) + "-D");
-    json written;
-    try {
-      written = json::parse(r.text("input"));
-    } catch (const json::exception&) {
-      throw Hdf5Error("dataset input is not JSON");
-    }
-    check_same_physics(file, written, input);  // InputError: passes through
-    read_contents<D>(r, sim, run, history);
-  } catch (const Hdf5Error& e) {
-    throw damaged(file, e.what());
+  if (!sim.comm.distributed()) {
+    read_on_this_rank<D>(file, input, sim, run, history);
+    return;
   }
+  // Every rank reads; when any failed, every rank throws the lowest failing rank's error (a rank
+  // whose piece is damaged must not leave the others waiting in the run's first collective).
+  std::vector<InputIssue> issues;
+  try {
+    read_on_this_rank<D>(file, input, sim, run, history);
+  } catch (const InputError& e) {
+    issues = e.issues();
+  } catch (const std::exception& e) {
+    issues = damaged(file, e.what()).issues();
+  }
+  std::string mine;
+  for (const auto& issue : issues) mine += issue.path + '\n' + issue.value + '\n' + issue.expected + '\n';
+  const Settled settled = settle(sim.comm, mine);
+  if (settled.rank < 0) return;
+  const auto lines = lines_of(settled.error);
+  std::vector<InputIssue> agreed;
+  for (std::size_t k = 0; k + 2 < lines.size(); k += 3)
+    agreed.push_back({lines[k], lines[k + 1], lines[k + 2]});
+  throw InputError(std::move(agreed));
 }
 
 #define MATPOINT_INSTANTIATE(D)                                                                             \

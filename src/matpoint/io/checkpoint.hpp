@@ -2,9 +2,12 @@
 // "Checkpoints and restart"), in one HDF5 file written atomically. A restart rebuilds the
 // Simulation from the input (grid, materials, conditions) and then replaces every evolving array
 // by the checkpoint's, in the checkpoint's storage order, so the next re-sort and every later step
-// repeat the uninterrupted run bit for bit (same thread count).
+// repeat the uninterrupted run bit for bit (same thread count). A decomposed run (several MPI ranks)
+// writes one piece per rank and a manifest that names them (docs/scale-out.md §9).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -42,7 +45,17 @@ struct RunCounters {
   // The solver's own state (the implicit solver's particle accelerations, host elements and
   // totals): named arrays, stored as datasets solver/NAME.
   std::map<std::string, std::vector<double>> solver_state;
+  // A decomposed run (docs/scale-out.md §9): the slab partition (SlabPartition::first_layers, the
+  // same on every rank; empty on one rank) and this rank's migration state (ParticleMigration::keys
+  // and sorted_prefix), with which the restarted run orders its particles as the uninterrupted one.
+  std::vector<int> partition;
+  std::vector<std::int64_t> sort_keys;
+  std::size_t sorted_prefix = 0;
 };
+
+/// The piece of a decomposed run's checkpoint that rank `rank` writes at step `step`, in the
+/// manifest's folder: checkpoint.sSSSSSSSS.rRRRR.h5.
+std::string checkpoint_piece_name(long step, int rank);
 
 /// The part of an input that decides the physics: the input without `title`, `output`,
 /// `checks`, `solver.end_time` and `solver.max_steps`, the keys a restart may change.
@@ -54,6 +67,12 @@ std::string physics_hash(const nlohmann::json& input);
 /// Writes the checkpoint to `file` atomically: to `file`.partial, fsync, then the current `file`
 /// becomes `previous` and the new one takes its name. A run killed at any moment leaves `file`
 /// complete (old or new). Throws std::runtime_error when the file cannot be written.
+///
+/// On several ranks (sim.comm.distributed(); a collective) each rank first writes its particles and
+/// its own counters to its piece (checkpoint_piece_name, atomically as above), then rank 0 writes
+/// `file` as the manifest: the global state, the history, the rank count, the partition and the
+/// pieces' names. Then rank 0 deletes the pieces that neither `file` nor `previous` names. A failure
+/// on any rank throws std::runtime_error on every rank (none waits for another).
 template <int D>
 void write_checkpoint(const std::filesystem::path& file, const std::filesystem::path& previous,
                       const Simulation<D>& sim, const RunCounters& run, const History& history,
@@ -62,7 +81,12 @@ void write_checkpoint(const std::filesystem::path& file, const std::filesystem::
 /// Replaces the evolving state of `sim` (built by build_simulation from the same input), `run`
 /// and `history` by the checkpoint's. Throws InputError (exit 2) naming the file when it is not a
 /// complete matpoint checkpoint of a D-dimensional run, or was written for an input whose physics
-/// differ from `input` (the message lists the changed keys).
+/// differ from `input` (the message lists the changed keys). On several ranks (a collective) each
+/// rank reads the manifest and its own piece, and `run` gets its piece's counters, migration state
+/// and the stored partition; any rank's error is thrown on every rank. A checkpoint of another
+/// rank count (a one-rank checkpoint counts as 1) is redistributed: every rank reads every piece
+/// and keeps its cells' particles of a partition balanced anew, in (sort key, id) order, so the
+/// particles continue bit for bit (docs/scale-out.md §9).
 template <int D>
 void read_checkpoint(const std::filesystem::path& file, const nlohmann::json& input, Simulation<D>& sim,
                      RunCounters& run, History& history);

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 bool is_run_file(const std::string& name) {
   static const std::regex pattern(
       R"(((particles|domains)_\d{6}\.vtu|results\.pvd|domains\.pvd|history\.csv|summary\.json|)"
-      R"(checkpoint(\.previous)?\.h5)(\.partial.*)?)");
+      R"(checkpoint(\.previous|\.s\d{8,}\.r\d{4,})?\.h5)(\.partial.*)?)");
   return std::regex_match(name, pattern);
 }
 

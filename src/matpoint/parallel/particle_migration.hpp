@@ -15,6 +15,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "matpoint/core/types.hpp"
@@ -81,6 +82,13 @@ class ParticleMigration {
 
   [[nodiscard]] const std::vector<Index>& keys() const { return key_; }
   [[nodiscard]] std::size_t sorted_prefix() const { return sorted_prefix_; }
+  /// A restart: the keys and sorted prefix of the particles a checkpoint stored (in their order).
+  void restore(std::vector<Index> keys, std::size_t sorted_prefix) {
+    if (sorted_prefix > keys.size())
+      throw std::logic_error("particle migration: a sorted prefix past the keys");
+    key_ = std::move(keys);
+    sorted_prefix_ = sorted_prefix;
+  }
 
  private:
   /// Removes the particles with keep[p] == 0, keeping the order of the others.

@@ -78,7 +78,8 @@ inline LandingStep steps_to_land(double remaining, double dt, bool even) {
 }
 
 /// Takes checkpoints when `output.checkpoint` asks for them (every N steps or T wall minutes)
-/// and on demand; remembers the last one.
+/// and on demand; remembers the last one. due() reads this process' wall clock: a decomposed run
+/// takes rank 0's decision (run_loop folds it into the step's one collective).
 class CheckpointClock {
  public:
   CheckpointClock(const CheckpointSpec& every, std::filesystem::path out_dir, long restart_step)
@@ -118,7 +119,7 @@ RunCounters start_state(const RunOptions& options, const Spec& spec, Solver& sol
   if (!options.restart.empty()) {
     read_checkpoint<D>(options.restart, spec.echo, sim, run, history);
     refuse_stale_checkpoint(options.restart, sim.step);  // a finished run went further than it
-    if (run.threads != current_threads())
+    if (run.threads != current_threads() && sim.comm.rank() == 0)
       std::fprintf(
           stderr,
           "warning: the checkpoint was written by a run with %d thread(s), this one has %d: the results "
@@ -358,23 +359,29 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
       last_recorded_step = sim.step;
     }
     progress.update(sim.step, sim.time);
-    if (checkpoints.due(sim.step)) save_checkpoint();
-    // A decomposed run stops on every rank when one rank got the signal (the ranks must agree).
+    // A decomposed run stops on every rank when one rank got the signal, and takes a checkpoint
+    // when rank 0's clock says so (the ranks must agree): one small collective per step.
+    bool checkpoint_due = checkpoints.due(sim.step);
     interrupted = interrupt_signal();
-    if (sim.comm.distributed()) interrupted = static_cast<int>(sim.comm.max(static_cast<long>(interrupted)));
+    if (sim.comm.distributed()) {
+      std::vector<int> flags{interrupted, sim.comm.rank() == 0 && checkpoint_due ? 1 : 0};
+      sim.comm.max(flags);
+      interrupted = flags[0], checkpoint_due = flags[1] != 0;
+    }
+    if (checkpoint_due) save_checkpoint();
     if (interrupted != 0) break;
   }
   const bool finished = result.exit_code == kExitOk && interrupted == 0;
-  // (a decomposed run has no checkpoints yet: parallel/decomposable.hpp refuses output.checkpoint)
-  if (checkpoints.step() != sim.step && !sim.comm.distributed() &&
-      (interrupted != 0 || (finished && spec.output.checkpoint.enabled())))
+  if (checkpoints.step() != sim.step && (interrupted != 0 || (finished && spec.output.checkpoint.enabled())))
     save_checkpoint();
   if (interrupted != 0) {
     result.exit_code = 128 + interrupted;
     std::ostringstream message;
+    const std::string mpirun =
+        sim.comm.distributed() ? "mpirun -n " + std::to_string(sim.comm.size()) + " " : std::string();
     message << "interrupted by " << signal_name(interrupted) << " after step " << sim.step << ", time "
-            << sim.time << "; continue with: matpoint run INPUT --out " << options.out_dir.string()
-            << " --restart " << checkpoints.file().string();
+            << sim.time << "; continue with: " << mpirun << "matpoint run INPUT --out "
+            << options.out_dir.string() << " --restart " << checkpoints.file().string();
     result.message = message.str();
   }
   if (result.exit_code != kExitNumerical && last_recorded_step != sim.step)
