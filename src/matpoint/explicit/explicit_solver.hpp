@@ -143,10 +143,20 @@ class ExplicitSolver {
       entropy += s;
       thermal_free += heat - b * (T - T0) - T * (s - b);
     }
-    const double mean = ps.size() > 0 ? sum / static_cast<double>(ps.size()) : 0.0;
-    const double in = sim_.boundary_heat + (sim_.heat.friction ? sim_.friction_work : 0.0);
-    const double W = strain_energy<D>(sim_.materials, ps);
-    return {largest, mean, content, in, W + coupling, entropy, W + thermal_free};
+    // a decomposed run: each rank's particles and accumulated heats, added over the ranks
+    std::vector<double> totals{sum,
+                               static_cast<double>(ps.size()),
+                               content,
+                               sim_.boundary_heat + (sim_.heat.friction ? sim_.friction_work : 0.0),
+                               strain_energy<D>(sim_.materials, ps),
+                               coupling,
+                               entropy,
+                               thermal_free};
+    sim_.comm.sum(totals);
+    largest = sim_.comm.max(largest);
+    const double mean = totals[1] > 0.0 ? totals[0] / totals[1] : 0.0;
+    const double W = totals[4];
+    return {largest, mean, totals[2], totals[3], W + totals[5], totals[6], W + totals[7]};
   }
 
   void write_static_outputs(const std::filesystem::path&, std::string&) const {}

@@ -41,6 +41,7 @@ class ExplicitStepper {
     velocity_.resize(sim.fields.mass.size());
     if (sim.comm.distributed()) decompose();
     if constexpr (kFields) set_up_fields();
+    if (ranks_) fmpm_.decompose(sim.comm, sim.owned_nodes_begin, sim.owned_nodes_end, sim.grid.node_count);
     if (sim.heat.enabled) heat_ = HeatTransport<D>(sim, kFields ? static_cast<int>(sim.field_of.size()) : 1);
     for (std::size_t p = 0; p < sim.particles.size(); ++p)
       if (sim.rigid_material.empty() || !sim.rigid_material[sim.particles.material[p]])
@@ -189,12 +190,15 @@ class ExplicitStepper {
     }
   }
 
-  /// This rank's share (its owned nodes, its particles): the ranks' shares add up to the whole.
+  /// This rank's share (its owned nodes of every field, its particles): the ranks' shares add up
+  /// to the whole.
   void record_momentum_difference() {
     Vec<D> grid = Vec<D>::Zero(), particles = Vec<D>::Zero();
     const auto& momentum = s_.fields.momentum;
-    const auto end = std::min<Index>(s_.owned_nodes_end, static_cast<Index>(momentum.size()));
-    for (Index i = s_.owned_nodes_begin; i < end; ++i) grid += momentum[i];
+    const Index n = s_.grid.node_count;
+    const auto end = std::min<Index>(s_.owned_nodes_end, n);
+    for (Index f = 0; f < static_cast<Index>(momentum.size()); f += n)
+      for (Index i = s_.owned_nodes_begin; i < end; ++i) grid += momentum[f + i];
     for (std::size_t p = 0; p < s_.particles.size(); ++p)
       particles += s_.particles.mass[p] * s_.particles.v[p];
     s_.grid_momentum_difference = grid - particles;
@@ -242,6 +246,7 @@ class ExplicitStepper {
     stencils_.by_material = s_.fields_by_material;
     stencils_.field_nodes = s_.grid.node_count;
     grid_.node_count = static_cast<Index>(s_.fields.mass.size());
+    if (ranks_) s_.contact.decompose(s_.comm, s_.owned_nodes_begin, s_.owned_nodes_end);
     fmpm_.set_increment_correction(
         [this](std::vector<Vec<D>>& dv) { s_.contact.correct_increment(s_.fields.mass, dv); });
   }
