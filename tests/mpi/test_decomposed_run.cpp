@@ -19,6 +19,7 @@
 #include "matpoint/explicit/field_stencils.hpp"
 #include "matpoint/io/input.hpp"
 #include "matpoint/parallel/communicator.hpp"
+#include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 
@@ -162,9 +163,9 @@ TEST(DecomposedRun, MohrCoulombColumnEqualsSerialRunBitwise) {
 // Stage 3 (docs/scale-out.md §17): multi-field contact, coupled heat, one-sided faces, dynamic FMPM.
 
 // The two disks of examples/two-disks-contact (Nairn 2026 §3.2.2: off-centre impact with Coulomb
-// friction, FMPM(4)) with the "average" normals and uGIMP (the example's logistic normals and CPDI
-// are refused on several ranks), through the impact: the contact nodes lie on the rank boundaries
-// (the slabs are along y; the disks meet at y = 25 mm).
+// friction, FMPM(4), CPDI1) with the "average" normals (the example's logistic normals are refused
+// on several ranks), through the impact: the contact nodes lie on the rank boundaries (the slabs
+// are along y; the disks meet at y = 25 mm).
 const char* const kContactDisks = R"({
   "grid": { "dim": 2, "min": [0, 0], "max": [0.06, 0.05], "cell_size": 0.001 },
   "materials": [ { "name": "polymer", "model": "neo_hookean", "volumetric": "half_j_squared",
@@ -192,12 +193,18 @@ std::string contact_disks(const std::string& contact, const std::string& solver,
 }
 
 TEST(DecomposedRun, ContactDisksWithFrictionAndFmpm4EqualSerialRunBitwise) {
-  expect_equal_to_serial<FieldStencils<2, TensorStencils<2, UGimpBasis>>>(
+  expect_equal_to_serial<FieldStencils<2, CpdiStencils<2, HatKernel, CpdiDomain::Parallelogram>>>(
       contact_disks(R"({ "law": "coulomb", "friction": 0.3, "normals": "average", "fmpm_method": "net" })",
-                    R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": 4 }, "basis": "ugimp",
+                    R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": 4 }, "basis": "cpdi1",
                          "courant": 0.2, "end_time": 1.6e-4 })",
                     false),
       700);
+}
+
+// CPDI2 (tracked corners, migrated with their particles): the two disks of the first case, whose
+// domains' reach the ranks agree on every step.
+TEST(DecomposedRun, TwoDisksWithCpdi2EqualSerialRunBitwise) {
+  expect_equal_to_serial<CpdiStencils<2, HatKernel, CpdiDomain::Tracked>>(two_disks("flip", "cpdi2"), 1300);
 }
 
 // Coupled heat with contact (Nairn 2026 Fig. 7's set-up: friction heat, perfect thermal contact,

@@ -41,11 +41,12 @@ class CappedDomains {
   }
 
   /// The warning, or an empty string when no particle reached the cap.
-  /// In a decomposed run each rank marks its own particles; `comm` adds the marks up.
+  /// In a decomposed run each rank marks its own particles (by id); `comm` takes the largest mark
+  /// of each id, so that a particle marked on two ranks (it migrated) counts once.
   [[nodiscard]] std::string warning(const Communicator& comm) const {
-    std::vector<double> marks{static_cast<double>(std::count(capped_.begin(), capped_.end(), 1))};
-    comm.sum(marks);
-    const auto count = static_cast<long>(marks[0]);
+    std::vector<double> marks(capped_.begin(), capped_.end());
+    comm.max(marks);
+    const auto count = static_cast<long>(std::count(marks.begin(), marks.end(), 1.0));
     // the earliest first time of any rank (-1: none on this rank)
     const double first_time =
         -comm.max(first_time_ < 0 ? -std::numeric_limits<double>::infinity() : -first_time_);

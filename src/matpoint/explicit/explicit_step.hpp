@@ -35,6 +35,9 @@ class ExplicitStepper {
   static constexpr long sort_interval = 10;
   /// Multimaterial contact: one velocity field per body or material (field_stencils.hpp).
   static constexpr bool kFields = requires { Stencils::multi_field; };
+  /// CPDI stencils (also inside the multi-field adapter) report domain corners outside the grid.
+  static constexpr bool kCornersChecked = requires(const Stencils& s) { s.first_corner_outside; } ||
+                                          requires(const Stencils& s) { s.base.first_corner_outside; };
 
   explicit ExplicitStepper(Simulation<D>& sim)
       : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm, sim.significant_mass), mls_(sim.solver.mls) {
@@ -64,6 +67,8 @@ class ExplicitStepper {
       brick_schedule().order_arrivals(ranks_->migration.keys(), s_.particles.id,
                                       ranks_->migration.sorted_prefix());
     if (const long p = first_corner_outside(stencils_); p >= 0) fail_corner_outside(p);
+    if constexpr (kCornersChecked)  // a decomposed run: every rank stops before its scatters
+      if (ranks_) settle_failures();
     if (s_.conditions.has_one_sided())
       mark_nodes_touching_faces(s_.grid, grid_, stencils_, s_.particles, s_.conditions);
     fmpm_now_ = fmpm_due(dt);
@@ -422,7 +427,7 @@ class ExplicitStepper {
       return -1;
   }
 
-  [[noreturn]] void fail_corner_outside(long p) {
+  void fail_corner_outside(long p) {
     const auto& F = s_.particles.F[p];
     std::ostringstream what;
     what << "has a domain corner more than one cell outside the grid [" << s_.grid.origin.transpose()
@@ -430,8 +435,7 @@ class ExplicitStepper {
     for (int r = 0; r < D; ++r) what << (r > 0 ? "; " : "") << F.row(r);
     what << "], det F = " << F.determinant()
          << "): its CPDI domain outgrew the grid; enlarge the grid, or refine if F is not physical";
-    fail(p, what.str());
-    throw std::logic_error("a CPDI run on several ranks");  // refused by check_decomposable
+    fail(p, what.str());  // a decomposed run: settled right after the stencils (step())
   }
 
   /// Stops the run naming particle p. A decomposed run finishes the step first (the other ranks

@@ -13,8 +13,8 @@ namespace matpoint {
 
 /// Throws InputError (exit 2, before anything runs) for every part of `spec` that a run on
 /// `ranks` > 1 ranks cannot do yet: the logistic-regression contact normals and the contact
-/// conductance of coupled heat (both read the particles of other ranks), the CPDI domains, the MLS
-/// mappings, checkpoints. One rank: nothing is refused.
+/// conductance of coupled heat (both read the particles of other ranks), the MLS mappings,
+/// checkpoints. One rank: nothing is refused.
 inline void check_decomposable(const Spec& spec, int ranks) {
   if (ranks <= 1) return;
   const std::string expected = "a run on 1 rank: the decomposed explicit solver (" + std::to_string(ranks) +
@@ -29,15 +29,6 @@ inline void check_decomposable(const Spec& spec, int ranks) {
            "\"average\" or \"mass_gradient\" run on several ranks)");
   if (spec.heat.enabled && spec.contact.enabled && spec.heat.contact == ThermalContact::Conductance)
     refuse("heat.contact", "\"conductance\" (its contact areas sum the particles' domains in storage order)");
-  switch (spec.solver.shape) {
-    case ShapeKind::CPDI1:
-    case ShapeKind::CPDI2:
-    case ShapeKind::B2CPDI:
-      refuse("solver.basis", "a CPDI basis (its ghost width grows with the domains)");
-      break;
-    default:
-      break;
-  }
   if (spec.solver.mapping != Mapping::MPM)
     refuse("solver.mapping", "an MLS mapping (it gathers neighbour particles)");
   if (spec.output.checkpoint.enabled())
