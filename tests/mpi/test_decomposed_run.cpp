@@ -1,6 +1,7 @@
 // Issue 23, verification 1 and 2: the explicit solver decomposed over the MPI ranks gives the
 // serial run's particles bit for bit (docs/scale-out.md §6: the scatter's colour-by-colour hand-off
-// keeps the serial summation order), and migration keeps every particle exactly once.
+// keeps the serial summation order), and migration keeps every particle exactly once; stage 3
+// (§17): with multi-field contact, coupled heat, one-sided faces and dynamic FMPM too.
 //
 // Every rank runs the serial reference itself (a Simulation on one rank), then the decomposed run
 // on all ranks; the decomposed particles are gathered by id and compared with `==`. The expected
@@ -8,14 +9,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "matpoint/core/parallel_session.hpp"
 #include "matpoint/explicit/explicit_solver.hpp"
+#include "matpoint/explicit/field_stencils.hpp"
 #include "matpoint/io/input.hpp"
 #include "matpoint/parallel/communicator.hpp"
+#include "matpoint/shape/cpdi_stencils.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 
@@ -23,22 +27,28 @@ namespace {
 
 using namespace matpoint;
 
-/// Per particle, by id: x, v, F, stress (2-D).
+/// Per particle, by id: x, v, F, stress (2-D), and the temperature with coupled heat.
 struct Particles {
   std::vector<long> id;
   std::vector<double> values;
-  static constexpr int kPerParticle = 2 + 2 + 4 + 4;
+  // the accumulated totals, added over the ranks: friction work, heat in through the thermal
+  // conditions, external work, external impulse (x, y)
+  std::vector<double> totals;
+  int per_particle = 2 + 2 + 4 + 4;
 };
 
 Particles gather(const Simulation<2>& sim, const Communicator& comm) {
   const auto& ps = sim.particles;
   std::vector<long> ids(ps.id.begin(), ps.id.end());
   std::vector<double> values;
+  Particles out;
+  if (ps.has_temperature) ++out.per_particle;
   for (std::size_t p = 0; p < ps.size(); ++p) {
     for (int a = 0; a < 2; ++a) values.push_back(ps.x[p][a]);
     for (int a = 0; a < 2; ++a) values.push_back(ps.v[p][a]);
     for (int k = 0; k < 4; ++k) values.push_back(ps.F[p].data()[k]);
     for (int k = 0; k < 4; ++k) values.push_back(ps.stress[p].data()[k]);
+    if (ps.has_temperature) values.push_back(ps.temperature[p]);
   }
   const auto all_ids = comm.all_gather(ids);
   const auto all_values = comm.all_gather(values);
@@ -46,12 +56,14 @@ Particles gather(const Simulation<2>& sim, const Communicator& comm) {
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return all_ids[a] < all_ids[b]; });
-  Particles out;
+  const auto per = static_cast<std::size_t>(out.per_particle);
   for (const std::size_t k : order) {
     out.id.push_back(all_ids[k]);
-    for (int j = 0; j < Particles::kPerParticle; ++j)
-      out.values.push_back(all_values[k * Particles::kPerParticle + static_cast<std::size_t>(j)]);
+    for (std::size_t j = 0; j < per; ++j) out.values.push_back(all_values[k * per + j]);
   }
+  out.totals = {sim.friction_work, sim.boundary_heat, sim.external_work, sim.external_impulse[0],
+                sim.external_impulse[1]};
+  comm.sum(out.totals);
   return out;
 }
 
@@ -75,8 +87,11 @@ Particles run(const Spec& spec, long steps, const Communicator& comm, long* most
   return gather(solver.sim(), comm);
 }
 
+/// `migrating`: the bodies cross the rank boundaries (the slabs are along y), which the run must
+/// then show.
 template <class Stencils>
-void expect_equal_to_serial(const std::string& json, long steps, long* repartitions = nullptr) {
+void expect_equal_to_serial(const std::string& json, long steps, bool migrating = true,
+                            long* repartitions = nullptr) {
   const Spec spec = parse_spec(json);
   const Communicator world = Communicator::world();
   const Particles serial = run<Stencils>(spec, steps, Communicator());
@@ -87,12 +102,17 @@ void expect_equal_to_serial(const std::string& json, long steps, long* repartiti
   for (std::size_t k = 0; k < serial.values.size(); ++k)
     differing += ranks.values[k] != serial.values[k] ? 1 : 0;
   EXPECT_EQ(differing, 0U) << "values that differ from the serial run's, of " << serial.values.size();
+  // The totals are sums over nodes that each rank adds for the nodes it owns: the serial sums in
+  // another association, equal up to round-off (a node two ranks store must count once).
+  for (std::size_t k = 0; k < serial.totals.size(); ++k)
+    EXPECT_NEAR(ranks.totals[k], serial.totals[k], 1e-12 * std::max(1.0, std::abs(serial.totals[k])))
+        << "total " << k << " (friction work, boundary heat, external work, impulse x, y)";
   if (world.rank() == 0)
     std::printf(
         "%d rank(s): %zu particles, %ld steps, at most %ld particles changed rank in a step; "
         "%zu values differ from the serial run\n",
         world.size(), serial.id.size(), steps, moved, differing);
-  if (world.size() > 1) {
+  if (world.size() > 1 && migrating) {
     EXPECT_GT(moved, 0) << "the run must move particles between ranks to test migration";
   }
 }
@@ -155,13 +175,156 @@ TEST(DecomposedRun, ReCutAsTheParticlesMoveEqualsSerialRunBitwise) {
   column.replace(column.find(R"("courant")"), 0, rebalance);
   disks.replace(disks.find(R"("dt")"), 0, rebalance);
   long column_cuts = 0, disk_cuts = 0;
-  expect_equal_to_serial<TensorStencils<2, UGimpBasis>>(column, 1200, &column_cuts);
-  expect_equal_to_serial<TensorStencils<2, QuadraticBSplineBasis>>(disks, 2000, &disk_cuts);
+  expect_equal_to_serial<TensorStencils<2, UGimpBasis>>(column, 1200, true, &column_cuts);
+  expect_equal_to_serial<TensorStencils<2, QuadraticBSplineBasis>>(disks, 2000, true, &disk_cuts);
   if (Communicator::world().rank() == 0)
     std::printf("re-partitions: column %ld, two disks %ld\n", column_cuts, disk_cuts);
   if (Communicator::world().size() > 1) {
     EXPECT_GT(column_cuts + disk_cuts, 0) << "the moving particles must move the balanced cut";
   }
+}
+
+// Stage 3 (docs/scale-out.md §17): multi-field contact, coupled heat, one-sided faces, dynamic FMPM.
+
+// The two disks of examples/two-disks-contact (Nairn 2026 §3.2.2: off-centre impact with Coulomb
+// friction, FMPM(4), CPDI1) with the "average" normals (the example's logistic normals are refused
+// on several ranks), through the impact: the contact nodes lie on the rank boundaries (the slabs
+// are along y; the disks meet at y = 25 mm).
+const char* const kContactDisks = R"({
+  "grid": { "dim": 2, "min": [0, 0], "max": [0.06, 0.05], "cell_size": 0.001 },
+  "materials": [ { "name": "polymer", "model": "neo_hookean", "volumetric": "half_j_squared",
+                   "density": 1500, "E": 1e9, "nu": 0.33 HEAT_MATERIAL } ],
+  "bodies": [
+    { "name": "left", "material": "polymer", "shape": { "type": "disk", "center": [0.019, 0.017], "radius": 0.01 },
+      "particles_per_cell": 2, "velocity": [81.65, 0] },
+    { "name": "right", "material": "polymer", "shape": { "type": "disk", "center": [0.041, 0.033], "radius": 0.01 },
+      "particles_per_cell": 2, "velocity": [-81.65, 0] } ],
+  "contact": CONTACT,
+  "solver": SOLVER HEAT
+})";
+
+std::string contact_disks(const std::string& contact, const std::string& solver, bool heat) {
+  std::string json = kContactDisks;
+  const auto put = [&](const std::string& key, const std::string& value) {
+    json.replace(json.find(key), key.size(), value);
+  };
+  put("HEAT_MATERIAL",
+      heat ? R"(, "heat_capacity": 1500, "conductivity": 0.1, "thermal_expansion": 6e-5)" : "");
+  put("CONTACT", contact);
+  put("SOLVER", solver);
+  put("HEAT", heat ? R"(, "heat": { "initial_temperature": 300, "transfer": "flip" })" : "");
+  return json;
+}
+
+TEST(DecomposedRun, ContactDisksWithFrictionAndFmpm4EqualSerialRunBitwise) {
+  expect_equal_to_serial<FieldStencils<2, CpdiStencils<2, HatKernel, CpdiDomain::Parallelogram>>>(
+      contact_disks(R"({ "law": "coulomb", "friction": 0.3, "normals": "average", "fmpm_method": "net" })",
+                    R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": 4 }, "basis": "cpdi1",
+                         "courant": 0.2, "end_time": 1.6e-4 })",
+                    false),
+      700);
+}
+
+// CPDI2 (tracked corners, migrated with their particles): the two disks of the first case, whose
+// domains' reach the ranks agree on every step.
+TEST(DecomposedRun, TwoDisksWithCpdi2EqualSerialRunBitwise) {
+  expect_equal_to_serial<CpdiStencils<2, HatKernel, CpdiDomain::Tracked>>(two_disks("flip", "cpdi2"), 1300);
+}
+
+// Coupled heat with contact (Nairn 2026 Fig. 7's set-up: friction heat, perfect thermal contact,
+// thermoelastic coupling), the mass-gradient normals with the position criterion, MUSL, FLIP.
+TEST(DecomposedRun, ContactDisksWithHeatEqualSerialRunBitwise) {
+  expect_equal_to_serial<FieldStencils<2, TensorStencils<2, QuadraticBSplineBasis>>>(
+      contact_disks(R"({ "law": "coulomb", "friction": 0.6, "normals": "mass_gradient", "separation": 0.5 })",
+                    R"({ "scheme": "musl", "transfer": "flip", "basis": "bspline2", "courant": 0.2,
+                         "end_time": 1.6e-4 })",
+                    true),
+      600);
+}
+
+// examples/incline-friction (a block sliding down a rigid incline, Coulomb mu = 0.3) raised so that
+// the incline's top and the block's base lie on the two sides of the first brick layer's end
+// (y = 0.08): on 2 ranks the contact nodes are on the rank boundary.
+TEST(DecomposedRun, RigidInclineFrictionEqualsSerialRunBitwise) {
+  const std::string json = R"({
+    "grid": { "dim": 2, "min": [0, 0], "max": [0.8, 0.2], "cell_size": 0.01 },
+    "materials": [ { "name": "block", "model": "neo_hookean", "density": 1000, "E": 2e6, "nu": 0.3 },
+                   { "name": "incline", "model": "rigid", "density": 1000 } ],
+    "bodies": [
+      { "name": "block", "material": "block", "shape": { "type": "box", "min": [0.05, 0.08], "max": [0.15, 0.13] } },
+      { "name": "incline", "material": "incline", "shape": { "type": "box", "min": [0, 0.06], "max": [0.8, 0.08] } } ],
+    "loads": { "gravity": [4.905, -8.4957092] },
+    "contact": { "law": "coulomb", "friction": 0.3, "normals": "mass_gradient" },
+    "solver": { "scheme": "usl", "transfer": "flip", "basis": "ugimp", "courant": 0.5, "end_time": 0.6 }
+  })";
+  expect_equal_to_serial<FieldStencils<2, TensorStencils<2, UGimpBasis>>>(json, 600, /*migrating=*/false);
+}
+
+// Heat conduction across the rank boundaries: a block on a fixed floor with a sine temperature
+// along y (T0 + 50 K sin(k y), a period of 0.2 m), a fixed temperature on the floor (y-), a heat
+// flux through the slip wall x-, thermoelastic coupling and transport FMPM(3) for the temperatures.
+TEST(DecomposedRun, HeatConductionEqualsSerialRunBitwise) {
+  const std::string json = R"({
+    "grid": { "dim": 2, "min": [0, 0], "max": [0.2, 0.6], "cell_size": 0.01 },
+    "materials": [ { "name": "warm", "model": "linear_elastic", "density": 1000, "E": 1e6, "nu": 0.3,
+                     "heat_capacity": 1000, "conductivity": 1e5, "thermal_expansion": 1e-4 } ],
+    "bodies": [ { "name": "block", "material": "warm", "shape": { "type": "box", "min": [0, 0], "max": [0.1, 0.5] } } ],
+    "boundary_conditions": [ { "face": "y-", "type": "fixed" }, { "face": "x-", "type": "slip" } ],
+    "loads": { "gravity": [0, -9.81] },
+    "heat": { "initial_temperature": 300, "transfer": "fmpm", "fmpm_order": 3,
+              "temperature_sine": { "amplitude": 50, "wave_vector": [0, 31.41592653589793] },
+              "conditions": [ { "face": "y-", "temperature": 400 }, { "face": "x-", "flux": 1e5 } ] },
+    "solver": { "scheme": "usl", "transfer": "flip", "basis": "bspline2", "courant": 0.5, "end_time": 1.0 }
+  })";
+  expect_equal_to_serial<TensorStencils<2, QuadraticBSplineBasis>>(json, 300, /*migrating=*/false);
+}
+
+// A one-sided face (a rigid wall that only pushes, examples/rolling-disk): a tall block thrown
+// against the x- face, which holds a node only where the block touches it. The face's nodes near
+// a rank boundary are touched by particles of both ranks (cpGIMP domains).
+TEST(DecomposedRun, OneSidedFaceEqualsSerialRunBitwise) {
+  const std::string json = R"({
+    "grid": { "dim": 2, "min": [0, 0], "max": [0.5, 1], "cell_size": 0.02 },
+    "materials": [ { "name": "rubber", "model": "neo_hookean", "density": 1000, "E": 1e6, "nu": 0.3 } ],
+    "bodies": [ { "name": "block", "material": "rubber", "shape": { "type": "box", "min": [0.03, 0.1], "max": [0.13, 0.9] },
+                  "particles_per_cell": 2, "velocity": [-1, 0.2] } ],
+    "boundary_conditions": [ { "face": "x-", "type": "fixed", "one_sided": true } ],
+    "loads": { "gravity": [-5, 0] },
+    "solver": { "scheme": "musl", "transfer": "flip", "basis": "cpgimp", "courant": 0.5, "end_time": 1.0 }
+  })";
+  expect_equal_to_serial<TensorStencils<2, CpGimpBasis>>(json, 400);
+}
+
+// Dynamic FMPM (Nairn 2026 §3.4): examples/fmpm-two-blocks turned to meet along y (across the
+// rank boundaries), 2 mm cells; the loop stops where the measure over all nodes falls below the
+// limit, which every rank must decide as the serial run does.
+std::string dynamic_fmpm_blocks(const std::string& measure, const std::string& limit) {
+  std::string json = R"({
+    "grid": { "dim": 2, "min": [0, -0.03], "max": [0.03, 0.142], "cell_size": 0.002 },
+    "materials": [ { "name": "polymer", "model": "neo_hookean", "volumetric": "half_j_squared",
+                     "density": 1500, "E": 1e9, "nu": 0.33 } ],
+    "bodies": [
+      { "name": "lower", "material": "polymer", "shape": { "type": "box", "min": [0.005, 0.005], "max": [0.025, 0.055] },
+        "particles_per_cell": 2, "velocity": [0, 81.65] },
+      { "name": "upper", "material": "polymer", "shape": { "type": "box", "min": [0.005, 0.059], "max": [0.025, 0.109] },
+        "particles_per_cell": 2, "velocity": [0, -81.65] } ],
+    "solver": { "scheme": "usl", "transfer": "fmpm",
+                "fmpm": { "order": 20, "dynamic": { "measure": "MEASURE", "limit": LIMIT } },
+                "basis": "bspline2", "courant": 0.2, "end_time": 4e-4 }
+  })";
+  json.replace(json.find("MEASURE"), 7, measure);
+  json.replace(json.find("LIMIT"), 5, limit);
+  return json;
+}
+
+TEST(DecomposedRun, DynamicFmpmMeansEqualsSerialRunBitwise) {
+  expect_equal_to_serial<TensorStencils<2, QuadraticBSplineBasis>>(dynamic_fmpm_blocks("means", "0.0015"),
+                                                                   400);
+}
+
+TEST(DecomposedRun, DynamicFmpmChangesEqualsSerialRunBitwise) {
+  expect_equal_to_serial<TensorStencils<2, QuadraticBSplineBasis>>(dynamic_fmpm_blocks("changes", "0.01"),
+                                                                   200);
 }
 
 }  // namespace

@@ -18,8 +18,10 @@
 
 #include "matpoint/explicit/contact_law.hpp"
 #include "matpoint/explicit/logistic_normal.hpp"
+#include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/io/spec.hpp"
+#include "matpoint/parallel/communicator.hpp"
 #include "matpoint/particles/particle_set.hpp"
 
 namespace matpoint {
@@ -50,6 +52,16 @@ class MultiFieldContact {
   [[nodiscard]] bool rigid(int f) const { return !rigid_velocity_[f].empty(); }
   [[nodiscard]] std::size_t contact_nodes() const { return entries_.size(); }
 
+  /// A decomposed run (docs/scale-out.md §17 stage 3): the ranks decide together whether the
+  /// normals' sums run (they are collectives: any rank with a contact node), and friction_work
+  /// counts only the grid nodes [begin, end) (of N) this rank owns, so that a node two ranks store
+  /// counts once when the ranks' works are added. Every rank finds the contact nodes among the
+  /// nodes it stores, where the scatter's hand-off completed the sums.
+  void decompose(const Communicator& comm, Index begin, Index end) {
+    comm_ = comm;
+    counted_begin_ = begin, counted_end_ = end;
+  }
+
   [[nodiscard]] Vec<D> rigid_velocity(int f, double t) const {
     Vec<D> v;
     for (int a = 0; a < D; ++a) v[a] = rigid_velocity_[f][a](t);
@@ -63,22 +75,35 @@ class MultiFieldContact {
   void prepare(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& particles,
                const std::vector<double>& mass) {
     find_contact_nodes(mass);
-    if (entries_.empty()) return;
+    const long here = entries_.empty() ? 0 : 1;
+    if ((comm_.distributed() ? comm_.max(here) : here) == 0) return;
     gradient_.assign(mass.size(), Vec<D>::Zero());
     const bool positions = spec_.separation.has_value();
     if (positions) position_.assign(mass.size(), Vec<D>::Zero());
     const bool by_volume = spec_.normals != ContactNormals::MassGradient;
     const bool logistic = spec_.normals == ContactNormals::Logistic;
-    if (logistic) collect_start();
-    for (std::size_t p = 0; p < particles.size(); ++p) {
+    // The sums in the scatter's brick order (grid/brick_schedule.hpp): the same on any number of
+    // threads and ranks (a decomposed run hands them on between the colours, as the masses).
+    Vec<D>* const gradient = gradient_.data();
+    Vec<D>* const position = positions ? position_.data() : nullptr;
+    const auto nodes = static_cast<Index>(mass.size());
+    const NodeArray written[2] = {{gradient->data(), D, nodes},
+                                  {positions ? position->data() : nullptr, D, nodes}};
+    const auto add_particle = [&](std::size_t p) {
       const double w = by_volume ? particles.volume(p) : particles.mass[p];
       const double m = particles.mass[p];
       const Vec<D>& x = particles.x[p];
       stencils.for_each_node(grid, p, [&](Index node, double N, const auto& dN) {
-        gradient_[node] += w * dN;
-        if (positions) position_[node] += (m * N) * x;
-        if (logistic) collect(node, p);
+        gradient[node] += w * dN;
+        if (positions) position[node] += (m * N) * x;
       });
+    };
+    stencils.brick_order().for_each_particle(add_particle,
+                                             std::span<const NodeArray>(written, positions ? 2 : 1));
+    if (logistic) {  // refused on several ranks: it needs the other ranks' particles
+      collect_start();
+      for (std::size_t p = 0; p < particles.size(); ++p)
+        stencils.for_each_node(grid, p, [&](Index node, double, const auto&) { collect(node, p); });
     }
     for (auto& e : entries_) {
       set_normal(e, mass);
@@ -134,12 +159,13 @@ class MultiFieldContact {
   /// The friction work of a step: each Coulomb node's total tangential correction (the lumped one
   /// of task 3.a; on an FMPM step also task 1.a's and every increment's correction of the loop)
   /// times the slip left in `velocity`: v+(1) right after task 3.a on a FLIP step, the final v+(k)
-  /// after an FMPM loop.
+  /// after an FMPM loop. A decomposed run: this rank's owned nodes only (decompose()).
   [[nodiscard]] double friction_work(const std::vector<double>& mass, const std::vector<Vec<D>>& velocity) const {
     const auto v = [&](Index i) -> Vec<D> { return velocity[i]; };
     double work = 0.0;
     for (const auto& e : entries_)
-      if (e.law.law == ContactLaw::Coulomb) work += slip_work(e, e.total, mass, v);
+      if (e.law.law == ContactLaw::Coulomb && e.node >= counted_begin_ && e.node < counted_end_)
+        work += slip_work(e, e.total, mass, v);
     return work;
   }
 
@@ -379,6 +405,8 @@ class MultiFieldContact {
   std::vector<std::vector<Seen>> seen_by_;  // by slot: the particles whose stencil has the node
   std::vector<LabelledPoint<D>> points_;    // scratch for one fit
   std::size_t logistic_fallbacks_ = 0;
+  Communicator comm_;  // a decomposed run's ranks (decompose()); one rank by default
+  Index counted_begin_ = 0, counted_end_ = std::numeric_limits<Index>::max();  // friction_work's nodes
 };
 
 }  // namespace matpoint

@@ -41,11 +41,12 @@ class CappedDomains {
   }
 
   /// The warning, or an empty string when no particle reached the cap.
-  /// In a decomposed run each rank marks its own particles; `comm` adds the marks up.
+  /// In a decomposed run each rank marks its own particles (by id); `comm` takes the largest mark
+  /// of each id, so that a particle marked on two ranks (it migrated) counts once.
   [[nodiscard]] std::string warning(const Communicator& comm) const {
-    std::vector<double> marks{static_cast<double>(std::count(capped_.begin(), capped_.end(), 1))};
-    comm.sum(marks);
-    const auto count = static_cast<long>(marks[0]);
+    std::vector<double> marks(capped_.begin(), capped_.end());
+    comm.max(marks);
+    const auto count = static_cast<long>(std::count(marks.begin(), marks.end(), 1.0));
     // the earliest first time of any rank (-1: none on this rank)
     const double first_time =
         -comm.max(first_time_ < 0 ? -std::numeric_limits<double>::infinity() : -first_time_);
@@ -153,10 +154,20 @@ class ExplicitSolver {
       entropy += s;
       thermal_free += heat - b * (T - T0) - T * (s - b);
     }
-    const double mean = ps.size() > 0 ? sum / static_cast<double>(ps.size()) : 0.0;
-    const double in = sim_.boundary_heat + (sim_.heat.friction ? sim_.friction_work : 0.0);
-    const double W = strain_energy<D>(sim_.materials, ps);
-    return {largest, mean, content, in, W + coupling, entropy, W + thermal_free};
+    // a decomposed run: each rank's particles and accumulated heats, added over the ranks
+    std::vector<double> totals{sum,
+                               static_cast<double>(ps.size()),
+                               content,
+                               sim_.boundary_heat + (sim_.heat.friction ? sim_.friction_work : 0.0),
+                               strain_energy<D>(sim_.materials, ps),
+                               coupling,
+                               entropy,
+                               thermal_free};
+    sim_.comm.sum(totals);
+    largest = sim_.comm.max(largest);
+    const double mean = totals[1] > 0.0 ? totals[0] / totals[1] : 0.0;
+    const double W = totals[4];
+    return {largest, mean, totals[2], totals[3], W + totals[5], totals[6], W + totals[7]};
   }
 
   void write_static_outputs(const std::filesystem::path&, std::string&) const {}

@@ -35,12 +35,16 @@ class ExplicitStepper {
   static constexpr long sort_interval = 10;
   /// Multimaterial contact: one velocity field per body or material (field_stencils.hpp).
   static constexpr bool kFields = requires { Stencils::multi_field; };
+  /// CPDI stencils (also inside the multi-field adapter) report domain corners outside the grid.
+  static constexpr bool kCornersChecked = requires(const Stencils& s) { s.first_corner_outside; } ||
+                                          requires(const Stencils& s) { s.base.first_corner_outside; };
 
   explicit ExplicitStepper(Simulation<D>& sim)
       : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm, sim.significant_mass), mls_(sim.solver.mls) {
     velocity_.resize(sim.fields.mass.size());
     if (sim.comm.distributed()) decompose();
     if constexpr (kFields) set_up_fields();
+    if (ranks_) fmpm_.decompose(sim.comm, sim.owned_nodes_begin, sim.owned_nodes_end, sim.grid.node_count);
     if (sim.heat.enabled) heat_ = HeatTransport<D>(sim, kFields ? static_cast<int>(sim.field_of.size()) : 1);
     for (std::size_t p = 0; p < sim.particles.size(); ++p)
       if (sim.rigid_material.empty() || !sim.rigid_material[sim.particles.material[p]])
@@ -69,6 +73,8 @@ class ExplicitStepper {
       brick_schedule().order_arrivals(ranks_->migration.keys(), s_.particles.id,
                                       ranks_->migration.sorted_prefix());
     if (const long p = first_corner_outside(stencils_); p >= 0) fail_corner_outside(p);
+    if constexpr (kCornersChecked)  // a decomposed run: every rank stops before its scatters
+      if (ranks_) settle_failures();
     if (s_.conditions.has_one_sided())
       mark_nodes_touching_faces(s_.grid, grid_, stencils_, s_.particles, s_.conditions);
     fmpm_now_ = fmpm_due(dt);
@@ -216,12 +222,15 @@ class ExplicitStepper {
     }
   }
 
-  /// This rank's share (its owned nodes, its particles): the ranks' shares add up to the whole.
+  /// This rank's share (its owned nodes of every field, its particles): the ranks' shares add up
+  /// to the whole.
   void record_momentum_difference() {
     Vec<D> grid = Vec<D>::Zero(), particles = Vec<D>::Zero();
     const auto& momentum = s_.fields.momentum;
-    const auto end = std::min<Index>(s_.owned_nodes_end, static_cast<Index>(momentum.size()));
-    for (Index i = s_.owned_nodes_begin; i < end; ++i) grid += momentum[i];
+    const Index n = s_.grid.node_count;
+    const auto end = std::min<Index>(s_.owned_nodes_end, n);
+    for (Index f = 0; f < static_cast<Index>(momentum.size()); f += n)
+      for (Index i = s_.owned_nodes_begin; i < end; ++i) grid += momentum[f + i];
     for (std::size_t p = 0; p < s_.particles.size(); ++p)
       particles += s_.particles.mass[p] * s_.particles.v[p];
     s_.grid_momentum_difference = grid - particles;
@@ -315,6 +324,7 @@ class ExplicitStepper {
     stencils_.by_material = s_.fields_by_material;
     stencils_.field_nodes = s_.grid.node_count;
     grid_.node_count = static_cast<Index>(s_.fields.mass.size());
+    if (ranks_) s_.contact.decompose(s_.comm, s_.owned_nodes_begin, s_.owned_nodes_end);
     fmpm_.set_increment_correction(
         [this](std::vector<Vec<D>>& dv) { s_.contact.correct_increment(s_.fields.mass, dv); });
   }
@@ -490,7 +500,7 @@ class ExplicitStepper {
       return -1;
   }
 
-  [[noreturn]] void fail_corner_outside(long p) {
+  void fail_corner_outside(long p) {
     const auto& F = s_.particles.F[p];
     std::ostringstream what;
     what << "has a domain corner more than one cell outside the grid [" << s_.grid.origin.transpose()
@@ -498,8 +508,7 @@ class ExplicitStepper {
     for (int r = 0; r < D; ++r) what << (r > 0 ? "; " : "") << F.row(r);
     what << "], det F = " << F.determinant()
          << "): its CPDI domain outgrew the grid; enlarge the grid, or refine if F is not physical";
-    fail(p, what.str());
-    throw std::logic_error("a CPDI run on several ranks");  // refused by check_decomposable
+    fail(p, what.str());  // a decomposed run: settled right after the stencils (step())
   }
 
   /// Stops the run naming particle p. A decomposed run finishes the step first (the other ranks

@@ -6,7 +6,10 @@
 #pragma once
 
 #include <cmath>
+#include <span>
+#include <vector>
 
+#include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/velocity_conditions.hpp"
 #include "matpoint/particles/particle_set.hpp"
@@ -20,12 +23,17 @@ namespace matpoint {
 /// held as soon as the body's support touches the face, would be a pivot ahead of the contact point
 /// about which the body climbs (examples/rolling-disk README). `field_grid` and `stencils` give the
 /// multi-field node indices of a contact run; node positions come from `grid`.
+/// The particles are visited in the scatter's brick order, the flags set as 1.0 in a node array:
+/// a decomposed run hands them on between the colours as it does the sums (setting a flag is an
+/// OR, which the hand-off carries as it carries a running sum), so a node that particles of two
+/// ranks touch is flagged on both (docs/scale-out.md §17 stage 3).
 template <int D, class Stencils>
 void mark_nodes_touching_faces(const Grid<D>& grid, const Grid<D>& field_grid, const Stencils& stencils,
                                const ParticleSet<D>& particles, VelocityConditions<D>& conditions) {
-  auto& touching = conditions.touching();
-  touching.assign(static_cast<std::size_t>(field_grid.node_count), 0);
-  for (std::size_t p = 0; p < particles.size(); ++p) {
+  std::vector<double> flags(static_cast<std::size_t>(field_grid.node_count), 0.0);
+  double* const flag = flags.data();
+  const NodeArray written{flag, 1, field_grid.node_count};
+  const auto mark = [&](std::size_t p) {
     Vec<D> extent;
     for (int a = 0; a < D; ++a) extent[a] = particles.half_extent(p, Vec<D>::Unit(a));
     const Vec<D>& x = particles.x[p];
@@ -39,10 +47,14 @@ void mark_nodes_touching_faces(const Grid<D>& grid, const Grid<D>& field_grid, c
         bool covers = true;
         for (int a = 0; a < D; ++a)
           covers = covers && (a == n || std::abs(offset[a]) <= extent[a] * (1.0 + 1e-9));
-        if (covers) touching[node] = 1;
+        if (covers) flag[node] = 1.0;
       });
     }
-  }
+  };
+  stencils.brick_order().for_each_particle(mark, std::span<const NodeArray>(&written, 1));
+  auto& touching = conditions.touching();
+  touching.resize(flags.size());
+  for (std::size_t i = 0; i < flags.size(); ++i) touching[i] = flags[i] != 0.0 ? 1 : 0;
 }
 
 }  // namespace matpoint

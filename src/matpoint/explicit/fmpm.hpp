@@ -20,10 +20,12 @@
 #include <type_traits>
 #include <vector>
 
+#include "matpoint/core/exact_sum.hpp"
 #include "matpoint/explicit/scalar_scatter.hpp"
 #include "matpoint/explicit/scatter.hpp"
 #include "matpoint/grid/velocity_conditions.hpp"
 #include "matpoint/io/spec.hpp"
+#include "matpoint/parallel/communicator.hpp"
 
 namespace matpoint {
 
@@ -108,6 +110,13 @@ class FmpmLoop {
   /// (multimaterial contact, explicit/contact.hpp). None by default.
   void set_increment_correction(std::function<void(std::vector<Value>&)> correction) {
     correction_ = std::move(correction);
+  }
+
+  /// A decomposed run: the dynamic measures count the grid nodes [begin, end) (of `field_nodes`,
+  /// in every field) this rank owns and add up over `comm`'s ranks, exactly (measure()).
+  void decompose(const Communicator& comm, Index begin, Index end, Index field_nodes) {
+    comm_ = comm;
+    owned_begin_ = begin, owned_end_ = end, field_nodes_ = field_nodes;
   }
 
   [[nodiscard]] const FmpmStatistics& statistics() const { return statistics_; }
@@ -197,26 +206,42 @@ class FmpmLoop {
   /// Dynamic FMPM measures of §3.4 over the active nodes, after the corrections:
   ///   Means   = sum |dv_i| / sum |v*_i|
   ///   Changes = mean over nodes of |dv_i| / (|v*_i| + eps), eps = 1 % of max |v*_i|.
+  /// The sums are exact (core/exact_sum.hpp), rounded once each: a decomposed run adds its
+  /// ranks' owned nodes and gets the serial run's measure to the bit, so every rank stops the
+  /// loop where the serial run does (docs/scale-out.md §17 stage 3).
   [[nodiscard]] double measure(const std::vector<double>& mass, double mass_floor,
                                const std::vector<Value>& v) const {
-    double change = 0.0, total = 0.0, largest = 0.0;
+    ExactSum change, total;
+    double largest = 0.0;
     long active = 0;
+    const auto counted = [&](std::size_t i) {
+      if (!(mass[i] > mass_floor)) return false;
+      if (field_nodes_ == 0) return true;  // one rank: every node
+      const Index node = static_cast<Index>(i) % field_nodes_;
+      return node >= owned_begin_ && node < owned_end_;
+    };
     for (std::size_t i = 0; i < v.size(); ++i)
-      if (mass[i] > mass_floor) largest = std::max(largest, magnitude(v[i]));
+      if (counted(i)) largest = std::max(largest, magnitude(v[i]));
+    if (comm_.distributed()) largest = comm_.max(largest);
     const double eps = 0.01 * largest;
     for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!(mass[i] > mass_floor)) continue;
+      if (!counted(i)) continue;
       ++active;
       const double dv = magnitude(prev_[i]), vi = magnitude(v[i]);
       if (spec_.measure == FmpmMeasure::Means) {
-        change += dv;
-        total += vi;
+        change.add(dv);
+        total.add(vi);
       } else if (vi + eps > 0.0) {
-        change += dv / (vi + eps);
+        change.add(dv / (vi + eps));
       }
     }
-    if (spec_.measure == FmpmMeasure::Means) return total > 0.0 ? change / total : 0.0;
-    return active > 0 ? change / static_cast<double>(active) : 0.0;
+    change.sum_over(comm_);
+    if (spec_.measure == FmpmMeasure::Means) {
+      total.sum_over(comm_);
+      return total.value() > 0.0 ? change.value() / total.value() : 0.0;
+    }
+    if (comm_.distributed()) active = comm_.sum(active);
+    return active > 0 ? change.value() / static_cast<double>(active) : 0.0;
   }
 
   FmpmSpec spec_;
@@ -228,6 +253,8 @@ class FmpmLoop {
   std::conditional_t<kScalar, std::vector<double>, GridFields<D>> scratch_;
   const std::vector<double>* weights_ = nullptr;  // transport: w_p
   std::function<void(std::vector<Value>&)> correction_;
+  Communicator comm_;  // a decomposed run's ranks (decompose()); one rank by default
+  Index owned_begin_ = 0, owned_end_ = 0, field_nodes_ = 0;  // field_nodes_ 0: every node counts
 };
 
 }  // namespace matpoint

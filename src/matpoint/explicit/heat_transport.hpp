@@ -44,7 +44,9 @@ class HeatTransport {
     double heaviest = 0.0;
     for (std::size_t p = 0; p < sim.particles.size(); ++p)
       heaviest = std::max(heaviest, sim.particles.mass[p] * sim.heat_capacity[sim.particles.material[p]]);
-    floor_ = sim.solver.mass_tolerance * heaviest;
+    floor_ = sim.solver.mass_tolerance * sim.comm.max(heaviest);  // a decomposed run: of every rank
+    if (sim.comm.distributed())
+      conditions_.count_only(sim.owned_nodes_begin, sim.owned_nodes_end, sim.grid.node_count);
   }
 
   [[nodiscard]] bool active() const { return active_; }

@@ -19,7 +19,7 @@ template <int D, class Stencils, class Contribution>
 void scatter_scalar(const Grid<D>& grid, const Stencils& stencils, std::vector<double>& out,
                     const Contribution& contribution) {
   out.assign(static_cast<std::size_t>(grid.node_count), 0.0);
-  const NodeArray written{out.data(), 1};  // for a decomposed run's hand-off between colours
+  const NodeArray written{out.data(), 1, grid.node_count};  // for a decomposed run's hand-off between colours
   const auto add_particle = [&](std::size_t p) {
     stencils.for_each_node(grid, p, [&](Index node, double N, const Vec<D>& dN) {
       out[node] += contribution(static_cast<std::ptrdiff_t>(p), N, dN);

@@ -42,9 +42,9 @@ void scatter_to_grid(const Grid<D>& grid, const Stencils& stencils, const Partic
   // force are D contiguous doubles per node).
   NodeArray written[3];
   int count = 0;
-  if constexpr ((What & kScatterMass) != 0) written[count++] = {mass, 1};
-  if constexpr ((What & kScatterMomentum) != 0) written[count++] = {momentum->data(), D};
-  if constexpr ((What & kScatterForce) != 0) written[count++] = {force->data(), D};
+  if constexpr ((What & kScatterMass) != 0) written[count++] = {mass, 1, nodes};
+  if constexpr ((What & kScatterMomentum) != 0) written[count++] = {momentum->data(), D, nodes};
+  if constexpr ((What & kScatterForce) != 0) written[count++] = {force->data(), D, nodes};
   static_assert(sizeof(Vec<D>) == D * sizeof(double));
   const auto add_particle = [&](std::size_t p) {
     const double m = particles.mass[p];

@@ -27,10 +27,13 @@
 namespace matpoint {
 
 /// A node array that a particle-to-grid sum writes: `width` doubles per node, node i's at
-/// data[i * width ..]. The brick order hands these over between colours in a decomposed run.
+/// data[i * width ..], `nodes` nodes: the grid's N, or fields x N in a multi-field (contact) run,
+/// field f at nodes f N .. f N + N - 1. The brick order hands these over between colours in a
+/// decomposed run (every field's copy of a node).
 struct NodeArray {
   double* data;
   int width;
+  Index nodes;
 };
 
 /// What a decomposed run adds to the brick order (parallel/colour_hand_off.hpp): the ranks agree

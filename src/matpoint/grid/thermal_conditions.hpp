@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "matpoint/grid/grid.hpp"
@@ -47,12 +48,24 @@ class ThermalConditions {
 
   [[nodiscard]] bool empty() const { return fixed_.empty() && flux_.empty(); }
 
+  /// A decomposed run: the heat is added only for the grid nodes [begin, end) (of `field_nodes`,
+  /// in every field) this rank owns, so that a node two ranks store counts once when the ranks'
+  /// heats are added (the temperatures and flows are set on every node).
+  void count_only(Index begin, Index end, Index field_nodes) {
+    counted_begin_ = begin, counted_end_ = end, field_nodes_ = field_nodes;
+  }
+  [[nodiscard]] bool counts(Index node) const {
+    if (field_nodes_ > 0) node %= field_nodes_;
+    return node >= counted_begin_ && node < counted_end_;
+  }
+
   /// Sets the fixed temperatures; with `capacity` and `heat`, adds the heat that took,
   /// sum c_i (T_fixed - T_i) over the nodes with capacity.
   void apply(std::vector<double>& T, double /*t*/, const std::vector<double>* capacity = nullptr,
              double* heat = nullptr, double* /*work*/ = nullptr) const {
     for (const auto& e : fixed_) {
-      if (heat != nullptr && capacity != nullptr) *heat += (*capacity)[e.node] * (e.value - T[e.node]);
+      if (heat != nullptr && capacity != nullptr && counts(e.node))
+        *heat += (*capacity)[e.node] * (e.value - T[e.node]);
       T[e.node] = e.value;
     }
   }
@@ -61,18 +74,19 @@ class ThermalConditions {
   void zero_constrained(std::vector<double>& dT, const std::vector<double>* capacity = nullptr,
                         double* heat = nullptr, double* /*work*/ = nullptr, double /*t*/ = 0.0) const {
     for (const auto& e : fixed_) {
-      if (heat != nullptr && capacity != nullptr) *heat -= (*capacity)[e.node] * dT[e.node];
+      if (heat != nullptr && capacity != nullptr && counts(e.node)) *heat -= (*capacity)[e.node] * dT[e.node];
       dT[e.node] = 0.0;
     }
   }
 
-  /// Adds the fixed fluxes q A_i to the nodal heat flow (W) of nodes with capacity; returns their sum.
+  /// Adds the fixed fluxes q A_i to the nodal heat flow (W) of nodes with capacity; returns their
+  /// sum (a decomposed run: over the owned nodes).
   double add_flux(std::vector<double>& heat_flow, const std::vector<double>& capacity, double floor) const {
     double total = 0.0;
     for (const auto& e : flux_)
       if (capacity[e.node] > floor) {
         heat_flow[e.node] += e.value;
-        total += e.value;
+        if (counts(e.node)) total += e.value;
       }
     return total;
   }
@@ -129,6 +143,7 @@ class ThermalConditions {
 
   std::array<std::vector<double>, D> integrals_;  // per axis: int N_j dxi by node j
   std::vector<Entry> fixed_, flux_;
+  Index counted_begin_ = 0, counted_end_ = std::numeric_limits<Index>::max(), field_nodes_ = 0;
 };
 
 }  // namespace matpoint

@@ -54,8 +54,12 @@ class VelocityConditions {
   /// A decomposed run: impulse and work are added only for the nodes [begin, end) this rank owns,
   /// so that a node two ranks store counts once when the ranks' sums are added (the velocities
   /// are set on every node).
+  /// [begin, end) are grid nodes (of N): a multi-field run counts every field's copy of them.
   void count_only(Index begin, Index end) { counted_begin_ = begin, counted_end_ = end; }
-  [[nodiscard]] bool counts(Index node) const { return node >= counted_begin_ && node < counted_end_; }
+  [[nodiscard]] bool counts(Index node) const {
+    if (fields_ > 1) node %= grid_.node_count;
+    return node >= counted_begin_ && node < counted_end_;
+  }
 
   [[nodiscard]] bool has_walls() const { return !walls_.empty(); }
   [[nodiscard]] bool has_one_sided() const { return one_sided_; }

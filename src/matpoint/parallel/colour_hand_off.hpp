@@ -9,7 +9,9 @@
 // overwrites its copy. Before every colour, therefore, every rank that stores a node holds the same
 // value, and after the last one the complete serial sum, added in the serial order. The lists of
 // which nodes go where depend only on the partition and the stencils' reach, so both sides build
-// them alike and the messages carry values only.
+// them alike and the messages carry values only. The lists name grid nodes (of N); an array of a
+// multi-field (contact) run holds every field's copy of them (NodeArray::nodes = fields x N), and
+// each listed node carries its value in every field, field f at f N + node.
 #pragma once
 
 #include <algorithm>
@@ -48,8 +50,11 @@ class ColourHandOff final : public BrickBoundary {
   void after_colour(int colour, const NodeArray* arrays, int count) const override {
     const auto& peers = peers_[static_cast<std::size_t>(colour)];
     if (peers.empty()) return;
+    // The doubles per listed node: every array's width times its fields (a multi-field array
+    // holds the N nodes of the lists once per field, field f at f N + node).
+    const Index n = grid_.node_count;
     int width = 0;
-    for (int k = 0; k < count; ++k) width += arrays[k].width;
+    for (int k = 0; k < count; ++k) width += arrays[k].width * static_cast<int>(arrays[k].nodes / n);
     std::vector<Communicator::Message> send, receive;
     buffers_.resize(2 * peers.size());
     for (std::size_t j = 0; j < peers.size(); ++j) {
@@ -61,7 +66,8 @@ class ColourHandOff final : public BrickBoundary {
       double* o = out.data();
       for (const Index node : peer.send)
         for (int k = 0; k < count; ++k)
-          for (int w = 0; w < arrays[k].width; ++w) *o++ = arrays[k].data[node * arrays[k].width + w];
+          for (Index f = node; f < arrays[k].nodes; f += n)
+            for (int w = 0; w < arrays[k].width; ++w) *o++ = arrays[k].data[f * arrays[k].width + w];
       if (!out.empty()) send.push_back({peer.rank, out.data(), out.size()});
       if (!in.empty()) receive.push_back({peer.rank, in.data(), in.size()});
     }
@@ -70,7 +76,8 @@ class ColourHandOff final : public BrickBoundary {
       const double* i = buffers_[2 * j + 1].data();
       for (const Index node : peers[j].receive)
         for (int k = 0; k < count; ++k)
-          for (int w = 0; w < arrays[k].width; ++w) arrays[k].data[node * arrays[k].width + w] = *i++;
+          for (Index f = node; f < arrays[k].nodes; f += n)
+            for (int w = 0; w < arrays[k].width; ++w) arrays[k].data[f * arrays[k].width + w] = *i++;
     }
   }
 
