@@ -122,6 +122,11 @@ class ExplicitStepper {
   [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
   [[nodiscard]] const HeatTransport<D>& heat() const { return heat_; }
   [[nodiscard]] const MlsStatistics& mls_statistics() const { return mls_.statistics(); }
+  /// A decomposed run's hand-off and migration counts (null in a serial run).
+  [[nodiscard]] const Traffic* halo_traffic() const { return ranks_ ? &ranks_->hand_off.traffic : nullptr; }
+  [[nodiscard]] const Traffic* migration_traffic() const {
+    return ranks_ ? &ranks_->migration.traffic : nullptr;
+  }
 
   /// What the stepper carries from step to step besides the Simulation (checkpoints keep it).
   struct State {
