@@ -199,6 +199,7 @@ class ExplicitSolver {
     const Traffic& now = Communicator::collectives();
     step_collectives_.calls += now.calls - before.calls;
     step_collectives_.seconds += now.seconds - before.seconds;
+    step_collectives_.waiting_cpu += now.waiting_cpu - before.waiting_cpu;
   }
 
   const Spec& spec_;

@@ -1,7 +1,6 @@
 #include "matpoint/parallel/communicator.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -23,12 +22,15 @@ Traffic collective_traffic;
 class Timed {
  public:
   Timed() : t0_(Traffic::start()) {}
-  ~Timed() { collective_traffic.done(t0_); }
+  ~Timed() {
+    collective_traffic.waited(t0_);  // a collective is all waiting
+    collective_traffic.done(t0_);
+  }
   Timed(const Timed&) = delete;
   Timed& operator=(const Timed&) = delete;
 
  private:
-  std::chrono::steady_clock::time_point t0_;
+  Traffic::Clock t0_;
 };
 
 int checked(int code, const char* what) {
