@@ -14,6 +14,7 @@
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/checkpoint.hpp"
 #include "matpoint/parallel/decomposable.hpp"
+#include "matpoint/parallel/parallel_summary.hpp"
 #include "matpoint/run/energy_guard.hpp"
 #include "matpoint/run/run_summary.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
@@ -94,12 +95,19 @@ class ExplicitSolver {
   /// solver.dt, or the Courant step of the present state (Nairn 2026 §1.8), with the wave speeds
   /// the last stress update recorded (the set-up's, or the previous step's: nothing writes F or
   /// the material state between it and this call; restore() forgets them).
-  [[nodiscard]] double time_step() const { return stable_time_step(sim_, /*use_recorded=*/true); }
+  [[nodiscard]] double time_step() const {
+    const Traffic before = Communicator::collectives();
+    const double dt = stable_time_step(sim_, /*use_recorded=*/true);
+    count_collectives_since(before);
+    return dt;
+  }
   void step(double h) {
+    const Traffic before = Communicator::collectives();
     // loads.gravity_scale at the step's start (the forward step's body force)
     const double scale = spec_.loads.gravity_scale(sim_.time);
     for (int a = 0; a < D; ++a) sim_.gravity[a] = scale * spec_.loads.gravity[a];
     stepper_.step(h);
+    count_collectives_since(before);
   }
   void after_step() { capped_.check(sim_); }
   /// Re-partitions of a decomposed run so far (solver.rebalance).
@@ -181,13 +189,46 @@ class ExplicitSolver {
       facts.logistic_fallbacks = sim_.contact.logistic_fallbacks();
     if (auto warning = capped_.warning(sim_.comm); !warning.empty())
       facts.warnings.push_back(std::move(warning));
+    if (sim_.comm.distributed()) add_parallel_facts(facts);
   }
 
  private:
+  /// summary.json's `parallel` (a collective): what the ranks exchanged per step, and a warning
+  /// when a rank runs more threads than the CPUs it may use (mpirun's binding).
+  void add_parallel_facts(RunFacts& facts) const {
+    RankTraffic mine;
+    mine.particles = static_cast<long>(sim_.particles.size());
+    mine.threads = facts.threads;
+    mine.step_wall = facts.step_wall;
+    mine.step_cpu = facts.step_cpu;
+    if (const Traffic* t = stepper_.halo_traffic()) mine.halo = *t;
+    if (const Traffic* t = stepper_.migration_traffic()) mine.migration = *t;
+    mine.collectives = step_collectives_;
+    const long steps = facts.steps - std::max(0L, facts.restart_step);  // the steps of this process
+    facts.parallel = parallel_summary(sim_.comm, mine, steps);
+    (*facts.parallel)["repartitions"] = stepper_.repartitions();  // solver.rebalance (the same on every rank)
+    const int threads = (*facts.parallel)["threads_per_rank"]["max"];
+    const int cpus = (*facts.parallel)["cpus_per_rank"]["min"];
+    if (threads > cpus)
+      facts.warnings.push_back("a rank runs " + std::to_string(threads) + " threads but may use only " +
+                               std::to_string(cpus) +
+                               " CPU(s) (mpirun's binding): use `mpirun --bind-to none` or --map-by "
+                               "slot:PE=<threads>, or fewer --threads");
+  }
+
+  /// Adds the collectives since `before` to the steps' count (serial runs: none).
+  void count_collectives_since(const Traffic& before) const {
+    const Traffic& now = Communicator::collectives();
+    step_collectives_.calls += now.calls - before.calls;
+    step_collectives_.seconds += now.seconds - before.seconds;
+    step_collectives_.waiting_cpu += now.waiting_cpu - before.waiting_cpu;
+  }
+
   const Spec& spec_;
   Simulation<D> sim_;
   CappedDomains capped_;
   ExplicitStepper<D, Stencils> stepper_;
+  mutable Traffic step_collectives_;  // the collectives of time_step() and step()
 };
 
 }  // namespace matpoint

@@ -136,6 +136,11 @@ class ExplicitStepper {
   [[nodiscard]] const MlsStatistics& mls_statistics() const { return mls_.statistics(); }
   /// Re-partitions of a decomposed run so far (solver.rebalance; 0 on one rank).
   [[nodiscard]] long repartitions() const { return ranks_ ? ranks_->repartitions : 0; }
+  /// A decomposed run's hand-off and migration counts (null in a serial run).
+  [[nodiscard]] const Traffic* halo_traffic() const { return ranks_ ? &ranks_->hand_off.traffic : nullptr; }
+  [[nodiscard]] const Traffic* migration_traffic() const {
+    return ranks_ ? &ranks_->migration.traffic : nullptr;
+  }
 
   /// What the stepper carries from step to step besides the Simulation (checkpoints keep it).
   struct State {

@@ -25,6 +25,7 @@
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/parallel/communicator.hpp"
 #include "matpoint/parallel/slab_partition.hpp"
+#include "matpoint/parallel/traffic.hpp"
 
 namespace matpoint {
 
@@ -50,6 +51,7 @@ class ColourHandOff final : public BrickBoundary {
   void after_colour(int colour, const NodeArray* arrays, int count) const override {
     const auto& peers = peers_[static_cast<std::size_t>(colour)];
     if (peers.empty()) return;
+    const auto t0 = Traffic::start();
     // The doubles per listed node: every array's width times its fields (a multi-field array
     // holds the N nodes of the lists once per field, field f at f N + node).
     const Index n = grid_.node_count;
@@ -69,9 +71,12 @@ class ColourHandOff final : public BrickBoundary {
           for (Index f = node; f < arrays[k].nodes; f += n)
             for (int w = 0; w < arrays[k].width; ++w) *o++ = arrays[k].data[f * arrays[k].width + w];
       if (!out.empty()) send.push_back({peer.rank, out.data(), out.size()});
+      traffic.sent(out.size() * sizeof(double));
       if (!in.empty()) receive.push_back({peer.rank, in.data(), in.size()});
     }
+    const auto t1 = Traffic::start();
     comm_.exchange(send, receive);
+    traffic.waited(t1);
     for (std::size_t j = 0; j < peers.size(); ++j) {
       const double* i = buffers_[2 * j + 1].data();
       for (const Index node : peers[j].receive)
@@ -79,7 +84,11 @@ class ColourHandOff final : public BrickBoundary {
           for (Index f = node; f < arrays[k].nodes; f += n)
             for (int w = 0; w < arrays[k].width; ++w) arrays[k].data[f * arrays[k].width + w] = *i++;
     }
+    traffic.done(t0);
   }
+
+  /// Messages, bytes and seconds of every hand-off so far (summary.json's `parallel`).
+  mutable Traffic traffic;
 
   /// Nodes this rank sends to / receives from other ranks after each colour (for the tests).
   [[nodiscard]] std::size_t send_count(int colour) const {

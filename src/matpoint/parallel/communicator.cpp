@@ -16,6 +16,23 @@ namespace matpoint {
 
 namespace {
 
+Traffic collective_traffic;
+
+/// Times one collective into collective_traffic.
+class Timed {
+ public:
+  Timed() : t0_(Traffic::start()) {}
+  ~Timed() {
+    collective_traffic.waited(t0_);  // a collective is all waiting
+    collective_traffic.done(t0_);
+  }
+  Timed(const Timed&) = delete;
+  Timed& operator=(const Timed&) = delete;
+
+ private:
+  Traffic::Clock t0_;
+};
+
 int checked(int code, const char* what) {
   if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI failed in ") + what);
   return code;
@@ -38,6 +55,7 @@ std::vector<T> gather_all(const std::vector<T>& values, MPI_Datatype type, int s
 template <class T, class Combine>
 void combine_in_rank_order(std::vector<T>& values, MPI_Datatype type, int size, Combine combine) {
   if (size == 1) return;
+  const Timed timed;
   const std::size_t n = values.size();
   const std::vector<T> all = gather_all(values, type, size);
   if (all.size() != n * static_cast<std::size_t>(size))
@@ -76,18 +94,21 @@ double Communicator::min(double value) const {
 }
 long Communicator::max(long value) const {
   if (size_ == 1) return value;
+  const Timed timed;
   long out = value;
   checked(MPI_Allreduce(&value, &out, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
   return out;
 }
 long Communicator::min(long value) const {
   if (size_ == 1) return value;
+  const Timed timed;
   long out = value;
   checked(MPI_Allreduce(&value, &out, 1, MPI_LONG, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
   return out;
 }
 long Communicator::sum(long value) const {
   if (size_ == 1) return value;
+  const Timed timed;
   long out = value;
   checked(MPI_Allreduce(&value, &out, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD), "MPI_Allreduce");
   return out;
@@ -105,18 +126,24 @@ void Communicator::max(std::vector<double>& values) const {
 }
 void Communicator::max(std::vector<int>& values) const {
   if (size_ == 1 || values.empty()) return;
+  const Timed timed;
   checked(MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_INT, MPI_MAX,
                         MPI_COMM_WORLD),
           "MPI_Allreduce");
 }
 std::vector<double> Communicator::all_gather(const std::vector<double>& values) const {
-  return size_ == 1 ? values : gather_all(values, MPI_DOUBLE, size_);
+  if (size_ == 1) return values;
+  const Timed timed;
+  return gather_all(values, MPI_DOUBLE, size_);
 }
 std::vector<long> Communicator::all_gather(const std::vector<long>& values) const {
-  return size_ == 1 ? values : gather_all(values, MPI_LONG, size_);
+  if (size_ == 1) return values;
+  const Timed timed;
+  return gather_all(values, MPI_LONG, size_);
 }
 std::string Communicator::broadcast(const std::string& text, int root) const {
   if (size_ == 1) return text;
+  const Timed timed;
   long length = static_cast<long>(text.size());
   checked(MPI_Bcast(&length, 1, MPI_LONG, root, MPI_COMM_WORLD), "MPI_Bcast");
   std::string out = rank_ == root ? text : std::string(static_cast<std::size_t>(length), '\0');
@@ -124,8 +151,11 @@ std::string Communicator::broadcast(const std::string& text, int root) const {
   return out;
 }
 void Communicator::barrier() const {
-  if (size_ > 1) checked(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
+  if (size_ == 1) return;
+  const Timed timed;
+  checked(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
 }
+const Traffic& Communicator::collectives() { return collective_traffic; }
 
 void Communicator::exchange(const std::vector<Message>& send, const std::vector<Message>& receive) const {
   if (size_ == 1) return;
@@ -196,6 +226,10 @@ std::vector<double> Communicator::all_gather(const std::vector<double>& values) 
 std::vector<long> Communicator::all_gather(const std::vector<long>& values) const { return values; }
 std::string Communicator::broadcast(const std::string& text, int) const { return text; }
 void Communicator::barrier() const {}
+const Traffic& Communicator::collectives() {
+  static const Traffic none;
+  return none;
+}
 void Communicator::exchange(const std::vector<Message>&, const std::vector<Message>&) const {}
 std::vector<std::vector<char>> Communicator::exchange(const std::vector<std::vector<char>>& to_rank) const {
   return to_rank;

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "matpoint/parallel/traffic.hpp"
+
 namespace matpoint {
 
 class Communicator {
@@ -44,6 +46,9 @@ class Communicator {
   /// Rank `root`'s text, on every rank.
   [[nodiscard]] std::string broadcast(const std::string& text, int root) const;
   void barrier() const;
+  /// The collectives above (not `exchange`) that this process ran on more than one rank, and the
+  /// wall time in them, waiting for the slowest rank included (summary.json's `parallel`).
+  [[nodiscard]] static const Traffic& collectives();
 
   /// Point to point with sizes both sides know (the halo hand-off): send[k] goes to its rank, and
   /// receive[k] is filled from its rank. Receives are posted before the sends; returns when all

@@ -23,6 +23,7 @@
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/parallel/communicator.hpp"
 #include "matpoint/parallel/slab_partition.hpp"
+#include "matpoint/parallel/traffic.hpp"
 #include "matpoint/particles/particle_set.hpp"
 
 namespace matpoint {
@@ -56,6 +57,7 @@ class ParticleMigration {
 
   /// Sends the particles whose cells another rank owns, appends those that arrive. A collective.
   void migrate(ParticleSet<D>& ps) {
+    const auto t0 = Traffic::start();
     const int P = comm_.size(), me = comm_.rank();
     std::vector<std::vector<std::size_t>> leaving(static_cast<std::size_t>(P));
     std::vector<char> keep(ps.size(), 1);
@@ -69,7 +71,10 @@ class ParticleMigration {
     for (int r = 0; r < P; ++r)
       if (r != me && !leaving[static_cast<std::size_t>(r)].empty())
         out[static_cast<std::size_t>(r)] = pack(ps, leaving[static_cast<std::size_t>(r)]);
+    for (std::size_t r = 0; r < out.size(); ++r) traffic.sent(out[r].size(), leaving[r].size());
+    const auto t1 = Traffic::start();
     const auto arrived = comm_.exchange(out);
+    traffic.waited(t1);
     std::size_t survivors_in_prefix = 0;
     for (std::size_t p = 0; p < sorted_prefix_; ++p) survivors_in_prefix += keep[p] != 0 ? 1 : 0;
     compact(ps, keep);
@@ -78,7 +83,11 @@ class ParticleMigration {
     for (int r = 0; r < P; ++r)
       if (r != me && !arrived[static_cast<std::size_t>(r)].empty())
         unpack(ps, arrived[static_cast<std::size_t>(r)]);
+    traffic.done(t0);
   }
+
+  /// Particles, messages, bytes and seconds of every migration so far (summary.json's `parallel`).
+  Traffic traffic;
 
   [[nodiscard]] const std::vector<Index>& keys() const { return key_; }
   [[nodiscard]] std::size_t sorted_prefix() const { return sorted_prefix_; }

@@ -127,6 +127,7 @@ nlohmann::json run_summary(const Spec& spec, const RunOptions& options, const Ru
   const double particle_steps = static_cast<double>(f.particles) * static_cast<double>(f.steps);
   s["particle_steps_per_second"] = f.step_wall > 0 ? particle_steps / f.step_wall : 0.0;
   s["particle_steps_per_cpu_second"] = f.step_cpu > 0 ? particle_steps / f.step_cpu : 0.0;
+  if (f.parallel) s["parallel"] = *f.parallel;  // a decomposed run (parallel/parallel_summary.hpp)
   add_solver_statistics(f, s);
   s["outputs"] = f.outputs;
   s["initial"] = energies_json(history.samples.front(), f.dimension);

@@ -42,6 +42,7 @@ struct RunFacts {
   std::optional<MlsStatistics> mls;               // IMPM and MLS-velocity runs
   std::optional<std::size_t> logistic_fallbacks;  // logistic-regression contact normals
   std::optional<nlohmann::json> implicit;         // implicit runs: Newton, cuts, assembly/solve times
+  std::optional<nlohmann::json> parallel;         // decomposed runs: ranks, threads, exchanges per step
   double momentum_scale = 0.0;                    // sum m |v| at time 0 (the momentum checks' scale)
   std::vector<double> final_stress_xx;            // every particle's sigma_xx (final-state measures)
   // The bodies' reach at the end: per axis the largest coordinate of a particle centre, and (3-D)
