@@ -10,6 +10,7 @@
 // (BrickSchedule::order_arrivals).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstring>
@@ -61,10 +62,14 @@ class ParticleMigration {
     const int P = comm_.size(), me = comm_.rank();
     std::vector<std::vector<std::size_t>> leaving(static_cast<std::size_t>(P));
     std::vector<char> keep(ps.size(), 1);
+    constexpr int kCut = SlabPartition<D>::kAxis;  // the owner depends on the cell layer along it only
+    std::size_t first_departure = ps.size();
     for (std::size_t p = 0; p < ps.size(); ++p) {
-      const int owner = partition_.owner_of_cell(grid_.cell_coords(ps.x[p]));
+      const int owner =
+          partition_.owner_of_layer(SlabPartition<D>::layer_of(grid_.cell_coordinate(ps.x[p][kCut], kCut)));
       if (owner == me) continue;
       keep[p] = 0;
+      first_departure = std::min(first_departure, p);
       leaving[static_cast<std::size_t>(owner)].push_back(p);
     }
     std::vector<std::vector<char>> out(static_cast<std::size_t>(P));
@@ -77,8 +82,10 @@ class ParticleMigration {
     traffic.waited(t1);
     std::size_t survivors_in_prefix = 0;
     for (std::size_t p = 0; p < sorted_prefix_; ++p) survivors_in_prefix += keep[p] != 0 ? 1 : 0;
-    compact(ps, keep);
-    compact_keys(keep);
+    if (first_departure < ps.size()) {  // nothing moves in front of the first departure
+      compact(ps, keep, first_departure);
+      compact_keys(keep, first_departure);
+    }
     sorted_prefix_ = survivors_in_prefix;
     for (int r = 0; r < P; ++r)
       if (r != me && !arrived[static_cast<std::size_t>(r)].empty())
@@ -100,11 +107,12 @@ class ParticleMigration {
   }
 
  private:
-  /// Removes the particles with keep[p] == 0, keeping the order of the others.
-  static void compact(ParticleSet<D>& ps, const std::vector<char>& keep) {
-    for_each_array(ps, [&keep](const char*, auto& array, std::size_t count) {
-      std::size_t to = 0;
-      for (std::size_t p = 0; p < keep.size(); ++p) {
+  /// Removes the particles with keep[p] == 0, keeping the order of the others (none before
+  /// first_departure is removed, so those stay where they are).
+  static void compact(ParticleSet<D>& ps, const std::vector<char>& keep, std::size_t first_departure = 0) {
+    for_each_array(ps, [&keep, first_departure](const char*, auto& array, std::size_t count) {
+      std::size_t to = first_departure;
+      for (std::size_t p = first_departure; p < keep.size(); ++p) {
         if (keep[p] == 0) continue;
         if (to != p)
           for (std::size_t k = 0; k < count; ++k) array[to * count + k] = array[p * count + k];
@@ -114,9 +122,9 @@ class ParticleMigration {
     });
   }
 
-  void compact_keys(const std::vector<char>& keep) {
-    std::size_t to = 0;
-    for (std::size_t p = 0; p < keep.size(); ++p)
+  void compact_keys(const std::vector<char>& keep, std::size_t first_departure) {
+    std::size_t to = first_departure;
+    for (std::size_t p = first_departure; p < keep.size(); ++p)
       if (keep[p] != 0) key_[to++] = key_[p];
     key_.resize(to);
   }
