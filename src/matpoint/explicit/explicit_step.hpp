@@ -36,15 +36,14 @@ class ExplicitStepper {
   /// Multimaterial contact: one velocity field per body or material (field_stencils.hpp).
   static constexpr bool kFields = requires { Stencils::multi_field; };
   /// CPDI stencils (also inside the multi-field adapter) report domain corners outside the grid.
-  static constexpr bool kCornersChecked = requires(const Stencils& s) { s.first_corner_outside; } ||
-                                          requires(const Stencils& s) { s.base.first_corner_outside; };
+  static constexpr bool kCornersChecked = requires(const Stencils& s) { s.first_corner_outside; }
+  || requires(const Stencils& s) { s.base.first_corner_outside; };
 
   explicit ExplicitStepper(Simulation<D>& sim)
       : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm, sim.significant_mass), mls_(sim.solver.mls) {
     velocity_.resize(sim.fields.mass.size());
     if (sim.comm.distributed()) decompose();
     if constexpr (kFields) set_up_fields();
-    if (ranks_) fmpm_.decompose(sim.comm, sim.owned_nodes_begin, sim.owned_nodes_end, sim.grid.node_count);
     if (sim.heat.enabled) heat_ = HeatTransport<D>(sim, kFields ? static_cast<int>(sim.field_of.size()) : 1);
     for (std::size_t p = 0; p < sim.particles.size(); ++p)
       if (sim.rigid_material.empty() || !sim.rigid_material[sim.particles.material[p]])
@@ -258,13 +257,23 @@ class ExplicitStepper {
     brick_schedule().boundary = &ranks_->hand_off;
   }
 
-  /// This rank's owned nodes (the node sums it reports) under the present partition.
+  /// This rank's owned nodes (the node sums it reports) under the present partition: at the
+  /// start, after a re-partition and at a restart with the stored partition.
   void claim_owned_nodes() {
     const auto [first, end] = ranks_->partition.owned_nodes_of(s_.comm.rank());
     const Index stride = s_.grid.stride[SlabPartition<D>::kAxis];
     s_.owned_nodes_begin = first * stride;
     s_.owned_nodes_end = end * stride;
     s_.conditions.count_only(s_.owned_nodes_begin, s_.owned_nodes_end);
+    count_owned_nodes_only();
+  }
+
+  /// The owned node range, to everything that counts owned nodes only besides the Simulation's
+  /// conditions: the dynamic FMPM measure, the contact's friction work, the heat conditions.
+  void count_owned_nodes_only() {
+    fmpm_.decompose(s_.comm, s_.owned_nodes_begin, s_.owned_nodes_end, s_.grid.node_count);
+    if constexpr (kFields) s_.contact.decompose(s_.comm, s_.owned_nodes_begin, s_.owned_nodes_end);
+    if (heat_.active()) heat_.count_only(s_);
   }
 
   /// Load balance (docs/scale-out.md §10), at a re-sort: the particle count per brick layer of all
@@ -329,7 +338,6 @@ class ExplicitStepper {
     stencils_.by_material = s_.fields_by_material;
     stencils_.field_nodes = s_.grid.node_count;
     grid_.node_count = static_cast<Index>(s_.fields.mass.size());
-    if (ranks_) s_.contact.decompose(s_.comm, s_.owned_nodes_begin, s_.owned_nodes_end);
     fmpm_.set_increment_correction(
         [this](std::vector<Vec<D>>& dv) { s_.contact.correct_increment(s_.fields.mass, dv); });
   }

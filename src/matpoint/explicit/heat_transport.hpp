@@ -51,6 +51,11 @@ class HeatTransport {
 
   [[nodiscard]] bool active() const { return active_; }
 
+  /// A decomposed run's owned nodes changed (a re-partition): the conditions' heat counts them.
+  void count_only(const Simulation<D>& sim) {
+    conditions_.count_only(sim.owned_nodes_begin, sim.owned_nodes_end, sim.grid.node_count);
+  }
+
   /// The frictional heat of this step by (multi-field) node, J; consumed by the next step().
   std::vector<double>& node_heat() { return node_heat_; }
 
