@@ -1,5 +1,5 @@
 // Deformation gradient update (Nairn 2026 §2.1 task 5): F <- dF F with dF = exp(L dt) or I + L dt.
-// The explicit step does it inside update_stress's pass (material.hpp); this is the pass alone.
+// Its own pass before update_stress (material.hpp): fused into the stress loop it was slower.
 #pragma once
 
 #include "matpoint/core/deformation_increment.hpp"

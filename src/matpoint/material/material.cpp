@@ -4,7 +4,6 @@
 #include <cmath>
 #include <type_traits>
 
-#include "matpoint/core/deformation_increment.hpp"
 #include "matpoint/core/errors.hpp"
 
 namespace matpoint {
@@ -164,9 +163,8 @@ void set_geostatic_stress(const std::vector<Material>& materials, const std::vec
 
 template <int D>
 long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles,
-                   const ArtificialViscosity& av, double dt, std::optional<DeformationUpdate> advance_F) {
+                   const ArtificialViscosity& av, double dt) {
   const auto n = static_cast<std::ptrdiff_t>(particles.size());
-  const bool advance = advance_F.has_value(), exponential = advance_F == DeformationUpdate::Exponential;
   const auto stride = static_cast<std::ptrdiff_t>(particles.state_stride);
   long first_bad = -1;
   double fastest = 0.0;  // max_p c_p, as max_current_wave_speed (wave_speed.hpp) finds it
@@ -186,8 +184,6 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : first_bad, fastest)
           for (std::ptrdiff_t p = 0; p < n; ++p) {
             if (particles.material[p] != static_cast<int>(m)) continue;
-            if (advance)
-              particles.F[p] = advanced_deformation<D>(particles.F[p], particles.L[p], dt, exponential);
             const Mat<D>& F = particles.F[p];
             const double J = F.determinant();
             if (!(J > 0.0)) {
@@ -279,11 +275,11 @@ template void set_geostatic_stress<2>(const std::vector<Material>&, const std::v
 template void set_geostatic_stress<3>(const std::vector<Material>&, const std::vector<BodySpec>&,
                                       const Triple&, ParticleSet<3>&);
 template long update_stress<1>(const std::vector<Material>&, ParticleSet<1>&, const ArtificialViscosity&,
-                               double, std::optional<DeformationUpdate>);
+                               double);
 template long update_stress<2>(const std::vector<Material>&, ParticleSet<2>&, const ArtificialViscosity&,
-                               double, std::optional<DeformationUpdate>);
+                               double);
 template long update_stress<3>(const std::vector<Material>&, ParticleSet<3>&, const ArtificialViscosity&,
-                               double, std::optional<DeformationUpdate>);
+                               double);
 template double strain_energy<1>(const std::vector<Material>&, const ParticleSet<1>&, int);
 template double strain_energy<2>(const std::vector<Material>&, const ParticleSet<2>&, int);
 template double strain_energy<3>(const std::vector<Material>&, const ParticleSet<3>&, int);

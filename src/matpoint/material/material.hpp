@@ -7,7 +7,6 @@
 // map `Yield` in the shared finite-strain frame.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -59,13 +58,11 @@ void set_geostatic_stress(const std::vector<Material>& materials, const std::vec
 /// sigma_p = sigma(F_p) - q_p I (and sigma_zz in 2-D) for every particle (q_p: artificial viscosity from L_p,
 /// zero when `av` is inactive). The model is chosen once per material, not per particle. Returns the index of
 /// the first particle with det F <= 0 or a non-finite stress, or -1. dt: the step, for rate-dependent
-/// yield stresses (Johnson-Cook; 0: rate terms off). With `advance_F`, each particle's F first
-/// advances over dt by its L (explicit/deformation.hpp's update, in the same pass: one read and
-/// write of F fewer per step).
+/// yield stresses (Johnson-Cook; 0: rate terms off). F is advanced before, by its own pass
+/// (explicit/deformation.hpp): fused into this loop it measured 9-10 % slower on bench-2d (session 17).
 template <int D>
 long update_stress(const std::vector<Material>& materials, ParticleSet<D>& particles,
-                   const ArtificialViscosity& av = {}, double dt = 0.0,
-                   std::optional<DeformationUpdate> advance_F = std::nullopt);
+                   const ArtificialViscosity& av = {}, double dt = 0.0);
 
 /// Sum over particles of V0_p W(F_p).
 template <int D>
