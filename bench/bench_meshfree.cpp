@@ -93,7 +93,7 @@ void BM_Shape(benchmark::State& state) {
       const std::size_t n = clouds[p].size();
       if constexpr (B == MeshfreeBasis::Mls)
         mls_shape_functions<D>(s.points[p], clouds[p], s.par.dilation(), std::span(N.data(), n),
-                               std::span(dN.data(), n));
+                               std::span(dN.data(), n), s.par.mls_weight, s.par.radius());
       else
         lme_shape_functions<D>(s.points[p], clouds[p], lme, std::span(N.data(), n), std::span(dN.data(), n));
     }

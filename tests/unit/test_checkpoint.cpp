@@ -14,6 +14,7 @@
 #include "matpoint/core/interrupt.hpp"
 #include "matpoint/io/checkpoint.hpp"
 #include "matpoint/io/hdf5_file.hpp"
+#include "matpoint/particles/remove_particles.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -207,6 +208,35 @@ TEST(Checkpoint, RoundTripKeepsEveryArrayBitForBit1D) {
 }
 TEST(Checkpoint, RoundTripKeepsEveryArrayBitForBit2D) { round_trip<2>("cpdi2", R"("flip")"); }
 TEST(Checkpoint, RoundTripKeepsEveryArrayBitForBit3D) { round_trip<3>("cpdi2", R"("xpic")"); }
+
+// The meshfree method's deletion repair (particles/remove_particles.hpp) leaves holes in the ids:
+// the checkpoint keeps X_p and V_p(0) by id up to the largest one, and the survivors read back bit
+// for bit, in their storage order.
+TEST(Checkpoint, RoundTripAfterParticlesWereDeleted) {
+  const Spec spec = parse_spec(input_text(2, "cpdi2", R"("flip")"));
+  Simulation<2> written = build_simulation<2>(spec);
+  fill(written);
+  auto& a = written.particles;
+  std::vector<char> gone(a.size(), 0);
+  gone[0] = gone[3] = gone[a.size() - 1] = 1;  // storage 0 holds the largest id (fill reverses them)
+  const long second = a.id[1];  // the largest id left
+  remove_particles(a, gone);
+  ASSERT_EQ(a.id[0], second);
+  const fs::path dir = scratch("round_trip_deleted");
+  write_checkpoint<2>(dir / kCheckpointFile, dir / kPreviousCheckpointFile, written, counters(), history_of(2, 1),
+                      spec.echo);
+  EXPECT_EQ(Hdf5Reader(dir / kCheckpointFile).shape("simulation/initial_position")[0],
+            static_cast<hsize_t>(second + 1));
+  Simulation<2> read = build_simulation<2>(spec);
+  RunCounters r;
+  History h{2, 1, {}, {}, {}};
+  read_checkpoint<2>(dir / kCheckpointFile, spec.echo, read, r, h);
+  const auto& b = read.particles;
+  ASSERT_EQ(b.size(), a.size());
+  EXPECT_TRUE(same(a.id, b.id) && same(a.x, b.x) && same(a.v, b.v) && same(a.F, b.F) && same(a.mass, b.mass));
+  EXPECT_TRUE(same(a.state, b.state) && same(a.corners, b.corners));
+  EXPECT_TRUE(same(a.x0, b.x0) && same(a.v0, b.v0)) << "initial position and velocity by id";
+}
 
 // --- the checkpoint writes every array that for_each_array visits (particles/particle_set.hpp) ---
 

@@ -52,16 +52,21 @@ std::size_t brute_force_count(const Vec<2>& x, const std::vector<Vec<2>>& nodes,
 
 // A hole of radius 3.5 h around (0.5, 0.5): the point at its centre has no node within
 // R = 2 sqrt(2) h (and one off centre only a few); with min_nodes = 6 its radius grows until it
-// holds 6, and the functions are complete again. Points away from the hole are untouched.
-TEST(MeshfreeRepairs, MlsVariableRadiusReachesTheMinimumNodeCount) {
+// holds 6, and the functions are complete again. Points away from the hole are untouched. With the
+// smooth weight the radius grows where fewer than 6 nodes lie within R / 1.25 (to 1.25 times the
+// 6th node's distance, so that node keeps weight: meshfree_stencils.hpp); with the truncated one
+// where fewer than 6 lie within R.
+void check_variable_radius(MlsWeight form) {
   const double h = 0.1;
   const Vec<2> centre(0.5, 0.5);
   const auto nodes = grid_without(h, [&](const Vec<2>& x) { return (x - centre).norm() < 3.5 * h; });
   const std::vector<Vec<2>> points{centre, centre + Vec<2>(0.12, 0.0), {0.15, 0.15}, {0.85, 0.2}};
   MeshfreeParameters par;
   par.spacing = h;
-  std::int64_t sparse = 0;  // points with fewer than 6 nodes within R, counted by brute force
-  for (const auto& x : points) sparse += brute_force_count(x, nodes, par.radius()) < 6;
+  par.mls_weight = form;
+  const double reach = form == MlsWeight::Smooth ? par.radius() / 1.25 : par.radius();
+  std::int64_t sparse = 0;  // points with fewer than 6 nodes within the reach, counted by brute force
+  for (const auto& x : points) sparse += brute_force_count(x, nodes, reach) < 6;
   ASSERT_EQ(sparse, 2);
 
   MeshfreeStencils<2> off;
@@ -80,6 +85,9 @@ TEST(MeshfreeRepairs, MlsVariableRadiusReachesTheMinimumNodeCount) {
     expect_consistent(on, p, points[p], nodes);
   }
 }
+
+TEST(MeshfreeRepairs, MlsVariableRadiusReachesTheMinimumNodeCount) { check_variable_radius(MlsWeight::Smooth); }
+TEST(MeshfreeRepairs, MlsVariableRadiusWithTheTruncatedWeight) { check_variable_radius(MlsWeight::Truncated); }
 
 // Nodes left of x = 0.5 removed within 3.5 h of x_p = (0.47, 0.5): the nodes within R all have
 // x >= 0.5, so x_p lies outside their convex hull and Newton on the dual cannot converge (eq. (61)

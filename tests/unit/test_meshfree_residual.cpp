@@ -117,5 +117,47 @@ TEST(MeshfreeStep, FreeFallIsExact) {
   }
 }
 
+// The deletion repair (the authors' code, extraction §6.5): an LME point outside its nodes' convex
+// hull has no shape functions (eq. (61) needs x in conv X), so the step fails; the stepper flags
+// exactly that point, and once it is removed the others fall freely, exactly (as above).
+TEST(MeshfreeStep, DeletionRemovesOnlyThePointWithoutFunctions) {
+  implicit::MeshfreeBody<2> body;
+  const double h = 0.1;
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) body.node_x.emplace_back(i * h, j * h);
+  body.fixed.assign(body.node_x.size() * 2, 0);
+  body.node_v.assign(body.node_x.size(), Vec<2>::Zero());
+  body.node_a.assign(body.node_x.size(), Vec<2>(0.0, -9.81));
+  std::vector<Vec<2>> points;  // the free fall's 8 x 8 points, and one outside [0, 0.4]^2 as point 10
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i) points.emplace_back((i + 0.5) * h / 2, (j + 0.5) * h / 2);
+  points.insert(points.begin() + 10, Vec<2>(0.55, 0.2));
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    body.point_x.push_back(points[p]);
+    body.point_mass.push_back(2.5 + static_cast<double>(p)), body.point_volume0.push_back(0.0025);
+    body.point_F.push_back(Mat<2>::Identity());
+  }
+  implicit::MeshfreeStepOptions options;
+  options.shape.basis = MeshfreeBasis::Lme;
+  options.shape.spacing = h;
+  options.multipliers = false;
+  implicit::MeshfreeStepper<2, NeoHookean> stepper(NeoHookean{1000.0, 3e6, 2e6}, options);
+  const Vec<2> g(0.0, -9.81);
+  EXPECT_EQ(stepper.step(body, 0.01, g).status, implicit::NewtonStatus::AssemblyFailed);
+  const std::vector<char> gone = stepper.points_without_functions(body);
+  std::vector<char> expected(points.size(), 0);
+  expected[10] = 1;
+  ASSERT_EQ(gone, expected);
+  body.remove_points(gone);
+  ASSERT_EQ(body.point_x.size(), 64u);
+  EXPECT_EQ(body.point_x[10], points[11]);  // the others keep their order
+  EXPECT_EQ(body.point_mass[9], 2.5 + 9), EXPECT_EQ(body.point_mass[10], 2.5 + 11);
+  EXPECT_TRUE(stepper.points_without_functions(body).empty());
+  const auto x0 = body.point_x;
+  for (int s = 0; s < 10; ++s) ASSERT_TRUE(stepper.step(body, 0.01, g).converged()) << s;
+  for (std::size_t p = 0; p < x0.size(); ++p)
+    EXPECT_LT((body.point_x[p] - x0[p] - 0.5 * g * 0.01).norm(), 1e-12) << p;
+}
+
 }  // namespace
 }  // namespace matpoint

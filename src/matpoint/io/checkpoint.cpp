@@ -61,11 +61,15 @@ std::vector<To> convert(const std::vector<From>& in) {
 }
 
 // --- X_p and V_p(0): kept by particle id in the file (simulation/initial_*), by storage index
-// in the particle set ---
+// in the particle set. Ids are 0 .. n - 1 unless particles were deleted (a meshfree run's repair,
+// particles/remove_particles.hpp): then the rows run to the largest id, and a deleted id's row is
+// zero and never read. ---
 
 template <int D>
 std::vector<Vec<D>> by_id(const ParticleSet<D>& ps, const std::vector<Vec<D>>& values) {
-  std::vector<Vec<D>> out(values.size());
+  long rows = static_cast<long>(values.size());
+  for (const long id : ps.id) rows = std::max(rows, id + 1);
+  std::vector<Vec<D>> out(static_cast<std::size_t>(rows), Vec<D>::Zero());
   for (std::size_t p = 0; p < ps.size(); ++p) out.at(static_cast<std::size_t>(ps.id[p])) = values[p];
   return out;
 }
@@ -369,12 +373,12 @@ template <int D>
 void write_contents(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& run, const History& history,
                     const json& input) {
   const auto& ps = sim.particles;
-  const hsize_t n = h(ps.size());
   write_header(w, kFormat, D, input);
   write_particles(w, ps);
   write_simulation(w, sim);
-  w.write("simulation/initial_velocity", flat(by_id(ps, ps.v0)), {n, D});
-  w.write("simulation/initial_position", flat(by_id(ps, ps.x0)), {n, D});
+  const auto v0 = by_id(ps, ps.v0), x0 = by_id(ps, ps.x0);
+  w.write("simulation/initial_velocity", flat(v0), {h(v0.size()), D});
+  w.write("simulation/initial_position", flat(x0), {h(x0.size()), D});
   write_run(w, run);
   write_history(w, history);
 }
@@ -505,10 +509,13 @@ void read_contents(const Hdf5Reader& r, Simulation<D>& sim, RunCounters& run, Hi
   auto& ps = sim.particles;
   const hsize_t n = read_particles(r, sim.particles, sim.heat.enabled);
   read_simulation(r, sim);
+  // n rows, or more when particles were deleted (by_id); from_id checks every id against them
+  const auto rows = r.shape("simulation/initial_velocity");
+  const hsize_t by_id_rows = rows.size() == 2 && rows[0] >= n ? rows[0] : n;
   std::vector<Vec<D>> by_id_values;
-  unflat(r.doubles("simulation/initial_velocity", {n, D}), by_id_values);
+  unflat(r.doubles("simulation/initial_velocity", {by_id_rows, D}), by_id_values);
   from_id(ps, by_id_values, ps.v0);
-  unflat(r.doubles("simulation/initial_position", {n, D}), by_id_values);
+  unflat(r.doubles("simulation/initial_position", {by_id_rows, D}), by_id_values);
   from_id(ps, by_id_values, ps.x0);
   read_run(r, run);
   read_history(r, history);

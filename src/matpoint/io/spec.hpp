@@ -249,6 +249,8 @@ struct MeshfreeSpec {                         // solver.meshfree, multiples of t
   int min_nodes = 0;                          // MLS repair: variable radius (0: off; §6.5: 6)
   int lme_max_nodes = 0;                      // LME repair: augment the cloud up to this (0: off)
   std::optional<double> spacing;              // h; empty: the mesh's smallest cell size
+  bool mls_truncated_weight = false;          // mls_weight "truncated" (the authors' code) or "smooth" (C1 at R)
+  bool delete_failed_points = false;          // drop points without usable functions (the authors' code, §6.5)
 };
 struct ImplicitSpec {
   double beta = 0.3, gamma = 0.5;  // Newmark, eqs. (17)-(19); the paper's tests use 0.3 / 0.5

@@ -13,7 +13,10 @@
 //     nearest the probe (MLS does not interpolate nodal values, so the node's own du_I would not do);
 //   - the checkpoint's solver/ group: the nodes' positions, velocities and accelerations (the
 //     particles carry the rest), so a restart continues the run bit for bit (same thread count);
-//   - summary.json's implicit.meshfree: the shape parameters and every repair of §6.5.
+//   - summary.json's implicit.meshfree: the shape parameters and every repair of §6.5;
+//   - with solver.meshfree.delete_failed_points (the authors' code, extraction §6.5): the points
+//     that have no usable shape functions at a step's start are deleted from the run (body and
+//     particles), their number and mass counted; the energy they carried leaves the balance as a loss.
 #pragma once
 
 #include <sstream>
@@ -47,6 +50,7 @@ MeshfreeStepOptions meshfree_step_options(const Spec& spec) {
   s.gamma = in.meshfree.gamma;
   s.min_nodes = static_cast<std::size_t>(in.meshfree.min_nodes);
   s.lme_max_nodes = static_cast<std::size_t>(in.meshfree.lme_max_nodes);
+  s.mls_weight = in.meshfree.mls_truncated_weight ? MlsWeight::Truncated : MlsWeight::Smooth;
   o.newmark = {in.beta, in.gamma};
   o.quasi_static = in.static_analysis;
   o.newton = newton_options(in);
@@ -101,6 +105,7 @@ class MeshfreeSolver {
       const Vec<D> gravity = gravity_at<D>(spec_, sim_.time + done + sub);  // at the end of the sub-step
       const std::vector<Vec<D>> nodes_before = body_.node_x;
       const double assembly_before = stepper_.assembly_seconds();
+      if (spec_.solver.implicit.meshfree.delete_failed_points) delete_failed_points();
       result = stepper_.step(body_, sub, gravity);
       totals_.assembly_seconds += stepper_.assembly_seconds() - assembly_before;
       marks_.newton_residual = result.final_residual_norm;
@@ -143,6 +148,8 @@ class MeshfreeSolver {
     std::vector<double> probes;
     for (const auto& u : probe_u_) probes.insert(probes.end(), u.data(), u.data() + D);
     c.solver_state["meshfree_probes"] = std::move(probes);
+    c.solver_state["meshfree_deleted_and_idle"] = {static_cast<double>(deleted_points_), deleted_mass_,
+                                                   static_cast<double>(r.idle_nodes)};
     save_run_totals(c, totals_, marks_, step_size_);
   }
   /// Throws InputError when the checkpoint is not a meshfree run's of this body.
@@ -154,10 +161,16 @@ class MeshfreeSolver {
     for (std::size_t I = 0, k = 0; I < nodes; ++I)
       for (auto* field : {&body_.node_x, &body_.node_v, &body_.node_a})
         for (int a = 0; a < D; ++a) (*field)[I][a] = x[k++];
+    stepper_.reset_repairs();  // the set-up's projections counted again what the checkpoint holds
     const auto& r = checkpoint_array(c, "meshfree_repairs", 5, expected);
     restored_repairs_ = {static_cast<std::int64_t>(r[0]), static_cast<std::int64_t>(r[1]),
                          static_cast<std::int64_t>(r[2]), static_cast<std::int64_t>(r[3]),
                          static_cast<std::int64_t>(r[4])};
+    if (const auto it = c.solver_state.find("meshfree_deleted_and_idle"); it != c.solver_state.end()) {
+      const auto& d = checkpoint_array(c, "meshfree_deleted_and_idle", 3, expected);
+      deleted_points_ = static_cast<std::int64_t>(d[0]), deleted_mass_ = d[1];
+      restored_repairs_.idle_nodes = static_cast<std::int64_t>(d[2]);
+    }  // absent: a checkpoint from before these counts existed
     const auto& u = checkpoint_array(c, "meshfree_probes", probe_u_.size() * D, expected);
     for (std::size_t k = 0; k < probe_u_.size(); ++k)
       for (int a = 0; a < D; ++a) probe_u_[k][a] = u[k * D + static_cast<std::size_t>(a)];
@@ -194,6 +207,7 @@ class MeshfreeSolver {
     m["spacing"] = shape.spacing;
     m["radius"] = shape.radius();
     if (mls) m["dilation"] = shape.dilation();
+    if (mls) m["weight"] = shape.mls_weight == MlsWeight::Smooth ? "smooth" : "truncated";
     if (!mls) m["gamma"] = shape.gamma;
     m["assembly_colours"] = stepper_.colours();
     const MeshfreeRepairCounts r = repairs();
@@ -201,7 +215,10 @@ class MeshfreeSolver {
                     {"mls_shepard", r.mls_shepard},
                     {"lme_augmented", r.lme_augmented},
                     {"lme_nodes_added", r.lme_nodes_added},
-                    {"failed", r.failed}};
+                    {"failed", r.failed},
+                    {"idle_nodes", r.idle_nodes},
+                    {"points_deleted", deleted_points_},
+                    {"mass_deleted", deleted_mass_}};
     s["meshfree"] = std::move(m);
     facts.implicit = std::move(s);
   }
@@ -251,15 +268,27 @@ class MeshfreeSolver {
             body_.fixed[static_cast<std::size_t>(I * D + a)] = 1;
       }
     }
-    body_.point_mass = ps.mass;
-    body_.point_volume0 = ps.volume0;
-    body_.point_material = ps.material;
     from_particles();
   }
 
-  /// The particles' kinematic and material state into the body's points (set-up and restart).
+  /// The deletion repair (see the top of this file), before a step's Newton solve.
+  void delete_failed_points() {
+    const std::vector<char> gone = stepper_.points_without_functions(body_);
+    if (gone.empty()) return;
+    for (std::size_t p = 0; p < gone.size(); ++p)
+      if (gone[p]) ++deleted_points_, deleted_mass_ += body_.point_mass[p];
+    body_.remove_points(gone);
+    remove_particles(sim_.particles, gone);
+    keep_unflagged(previous_x_, gone, 1);
+  }
+
+  /// The particles' kinematic and material state into the body's points (set-up and restart, where
+  /// points may have been deleted before the checkpoint).
   void from_particles() {
     const ParticleSet<D>& ps = sim_.particles;
+    body_.point_mass = ps.mass;
+    body_.point_volume0 = ps.volume0;
+    body_.point_material = ps.material;
     body_.point_x = ps.x;
     body_.point_F = ps.F;
     body_.point_v = ps.v;
@@ -325,6 +354,8 @@ class MeshfreeSolver {
   ImplicitTotals totals_;
   HistoryMarks marks_;
   MeshfreeRepairCounts restored_repairs_;  // of the sessions before a restart
+  std::int64_t deleted_points_ = 0;        // delete_failed_points: points deleted so far, and their mass
+  double deleted_mass_ = 0.0;
   std::vector<std::size_t> probe_nodes_;   // output.node_probes: body nodes
   std::vector<Vec<D>> probe_u_;
   StepSizeControl step_size_;

@@ -5,8 +5,17 @@
 //       with the repairs of §5.3 when asked); the blocks of the sparse assembly are the clouds' dofs;
 //   (2) Newton on the nodal increments du (point_residual.hpp; Newmark with the nodal history, or
 //       quasi-static), Dirichlet dofs held at du = 0;
-//   (3) x_I += du_I, x_p += sum_I N_I du_I, F_p = H_p F_p^n, and the nodes' Newmark update
-//       a = c du + c_v v^n + c_a a^n, v = v^n + dt ((1 - gamma) a^n + gamma a).
+//   (3) x_p += sum_I N_I du_I, F_p = H_p F_p^n, the nodes' Newmark update of their coefficients
+//       a = c du + c_v v^n + c_a a^n, v = v^n + dt ((1 - gamma) a^n + gamma a), and each node moves
+//       with the field at its own position, x_I += sum_J N_J(x_I) du_J.
+// Node motion: the paper's Algorithm 2 leaves it implicit (extraction §6.1 writes x_I += du_I). With
+// MLS (and LME inside the hull) du_I is a coefficient, not the material's displacement at x_I, and
+// moving nodes by it let coefficient oscillations scramble the nodes: in the cohesive column
+// (examples/soil-column-collapse/gmm-mls.json) interior nodes reached 100-250 m/s and crossed each
+// other within 0.074 s while the points moved by centimetres, fixed floor nodes left the floor
+// (the multipliers hold the field at them, not their coefficients), and a fixed node's cloud became
+// degenerate. Moving nodes with the field keeps them where the material is, fixed nodes fixed, and is
+// the same motion for a translation (partition of unity) or any field that LME or MLS reproduces.
 // Dirichlet conditions (du = 0 on the flagged dofs of the nodes): MLS has no Kronecker-delta
 // property, so fixing a node's dofs does not make the field vanish there; with `multipliers` (the
 // authors' choice, extraction A14) the field itself is held, sum_J N_J(x_d) du_J,i = 0 at each
@@ -20,6 +29,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <span>
@@ -30,6 +40,7 @@
 #include "matpoint/implicit/newton.hpp"
 #include "matpoint/implicit/particle_newmark/particle_quadrature.hpp"
 #include "matpoint/implicit/sparse_assembly.hpp"
+#include "matpoint/particles/remove_particles.hpp"
 #include "matpoint/shape/meshfree_stencils.hpp"
 
 namespace matpoint::implicit {
@@ -51,6 +62,14 @@ struct MeshfreeBody {
   std::vector<double> point_stress_zz;
 
   [[nodiscard]] Index dofs() const { return static_cast<Index>(node_x.size()) * D; }
+  /// Drops the points that `gone` flags (one flag per point), keeping the others' order.
+  void remove_points(const std::vector<char>& gone) {
+    for (auto* a : {&point_x, &point_v}) keep_unflagged(*a, gone, 1);
+    for (auto* a : {&point_mass, &point_volume0, &point_stress_zz}) keep_unflagged(*a, gone, 1);
+    for (auto* a : {&point_F, &point_stress}) keep_unflagged(*a, gone, 1);
+    keep_unflagged(point_material, gone, 1);
+    keep_unflagged(point_state, gone, static_cast<std::size_t>(state_stride));
+  }
   [[nodiscard]] int material(std::size_t p) const { return point_material.empty() ? 0 : point_material[p]; }
   [[nodiscard]] const double* state(std::size_t p) const {
     return state_stride > 0 ? &point_state[p * static_cast<std::size_t>(state_stride)] : nullptr;
@@ -68,6 +87,12 @@ struct MeshfreeStepOptions {
   NewtonOptions newton{};
   LinearSolverOptions linear{};
 };
+
+/// A node whose consistent-mass diagonal sum_p m_p N_I(x_p)^2 is below this fraction of the largest
+/// node's is idle for the step (held at du = 0, at rest): the points hardly see it, and its equation
+/// would make the matrix nearly singular (condition number of order 1 / fraction). The fraction is
+/// small enough that holding such a node changes the field by its weight, about this much.
+inline constexpr double kIdleMassFraction = 1e-8;
 
 template <int D, class Material>
 class MeshfreeStepper {
@@ -146,7 +171,19 @@ class MeshfreeStepper {
     return true;
   }
 
+  /// Flags (one per point) the points that have no usable shape functions at the body's present
+  /// positions, as step() would find them; none flagged: an empty vector.
+  std::vector<char> points_without_functions(const MeshfreeBody<D>& body) {
+    build_meshfree_stencils<D>(body.point_x, body.node_x, options_.shape, stencils_);
+    if (stencils_.repairs.failed == 0) return {};
+    std::vector<char> gone(stencils_.size(), 0);
+    for (std::size_t p = 0; p < gone.size(); ++p)
+      gone[p] = stencils_.status[p] != MeshfreeStatus::Ok && stencils_.status[p] != MeshfreeStatus::Shepard;
+    return gone;
+  }
+
   [[nodiscard]] const MeshfreeRepairCounts& repairs() const { return repairs_; }
+  void reset_repairs() { repairs_ = {}; }
   [[nodiscard]] const LinearSolver& linear_solver() const { return *solver_; }
   [[nodiscard]] double assembly_seconds() const { return assembly_seconds_; }
   [[nodiscard]] int colours() const { return assembly_.colour_count(); }
@@ -165,6 +202,7 @@ class MeshfreeStepper {
           "meshfree shape functions failed at " + std::to_string(stencils_.repairs.failed) + " points";
       return false;
     }
+    find_idle_nodes(body);
     if (!build_constraints(body)) {
       result.message = "meshfree shape functions failed at a Dirichlet node";
       return false;
@@ -195,13 +233,15 @@ class MeshfreeStepper {
     }
   }
 
-  /// The fixed nodes as constraint points (multipliers on): their positions' shape functions.
+  /// The fixed nodes as constraint points (multipliers on): their positions' shape functions. An
+  /// idle fixed node (the body has left it, e.g. a floor node the toe has run past) holds no field:
+  /// its constraint is dropped (its cloud may be a line of floor nodes, a singular moment matrix).
   bool build_constraints(const MeshfreeBody<D>& body) {
     constrained_.clear();
     std::vector<Vec<D>> x;
     if (options_.multipliers)
       for (std::size_t I = 0; I < body.node_x.size(); ++I)
-        for (int i = 0; i < D; ++i)
+        for (int i = 0; i < D && !idle_[I]; ++i)
           if (body.fixed[I * D + i]) {
             constrained_.push_back(static_cast<Index>(I));
             x.push_back(body.node_x[I]);
@@ -215,8 +255,25 @@ class MeshfreeStepper {
 
   [[nodiscard]] Index multiplier_dofs() const { return static_cast<Index>(constrained_.size()) * D; }
 
+  /// The idle nodes, those the points hardly see (see kIdleMassFraction), from the points' stencils:
+  /// in no cloud a node has neither mass nor stiffness and the matrix is singular; at the edge of
+  /// the clouds (the smooth MLS weight vanishes there) its row is nearly zero and so is the
+  /// factorisation's pivot.
+  void find_idle_nodes(const MeshfreeBody<D>& body) {
+    std::vector<double> mass(body.node_x.size(), 0.0);  // diagonal of the consistent mass, sum_p m_p N_I^2
+    for (std::size_t p = 0; p < stencils_.size(); ++p)
+      for (auto k = stencils_.offset[p]; k < stencils_.offset[p + 1]; ++k)
+        mass[static_cast<std::size_t>(stencils_.node[k])] += body.point_mass[p] * stencils_.N[k] * stencils_.N[k];
+    const double largest = mass.empty() ? 0.0 : *std::max_element(mass.begin(), mass.end());
+    idle_.assign(mass.size(), 0);
+    for (std::size_t I = 0; I < mass.size(); ++I) {
+      idle_[I] = !(mass[I] > kIdleMassFraction * largest);
+      repairs_.idle_nodes += idle_[I];
+    }
+  }
+
   /// Blocks: the points' clouds, then each constraint's cloud and its D multipliers (those of the
-  /// free components are held at zero as Dirichlet dofs).
+  /// free components are held at zero as Dirichlet dofs). Idle nodes are held at du = 0.
   void build_blocks(const MeshfreeBody<D>& body) {
     offsets_.assign(1, 0);
     block_dofs_.clear();
@@ -243,6 +300,9 @@ class MeshfreeStepper {
     } else {
       std::copy(body.fixed.begin(), body.fixed.end(), dirichlet.begin());
     }
+    for (std::size_t I = 0; I < idle_.size(); ++I)
+      if (idle_[I])
+        for (int i = 0; i < D; ++i) dirichlet[I * D + static_cast<std::size_t>(i)] = 1;
     assembly_.build(body.dofs() + multiplier_dofs(), offsets_, block_dofs_, dirichlet);
   }
 
@@ -304,11 +364,16 @@ class MeshfreeStepper {
           updated_stress_of<D>(materials_[static_cast<std::size_t>(body.material(p))], body.point_F[p],
                                body.state(p), body.point_stress_zz[p], dt);
     }
+    const std::vector<Vec<D>> node_motion = field_at_nodes(body, du);
     const NewmarkCoefficients c(options_.newmark, dt);
     for (std::size_t I = 0; I < body.node_x.size(); ++I) {
       const Vec<D> d = du.segment<D>(static_cast<Index>(I) * D);
-      body.node_x[I] += d;
+      body.node_x[I] += node_motion[I];
       if (options_.quasi_static) continue;
+      if (idle_[I]) {  // no equation: it stays where the body left it, at rest, until a cloud reaches it
+        body.node_v[I].setZero(), body.node_a[I].setZero();
+        continue;
+      }
       const Vec<D> a = c.displacement * d + c.known<D>(body.node_v[I], body.node_a[I]);
       body.node_v[I] += dt * ((1.0 - options_.newmark.gamma) * body.node_a[I] + options_.newmark.gamma * a);
       body.node_a[I] = a;
@@ -320,12 +385,32 @@ class MeshfreeStepper {
     }
   }
 
+  /// The field's increment sum_J N_J(x_I) du_J at every node's step-start position (see the top of
+  /// this file); a node whose functions cannot be computed there moves by its own du_I.
+  std::vector<Vec<D>> field_at_nodes(const MeshfreeBody<D>& body, const Eigen::VectorXd& du) const {
+    MeshfreeStencils<D> at;
+    build_meshfree_stencils<D>(body.node_x, body.node_x, options_.shape, at);
+    std::vector<Vec<D>> out(body.node_x.size());
+    for (std::size_t I = 0; I < out.size(); ++I) {
+      const MeshfreeStatus st = at.status[I];
+      if (st != MeshfreeStatus::Ok && st != MeshfreeStatus::Shepard && st != MeshfreeStatus::IllConditioned) {
+        out[I] = du.segment<D>(static_cast<Index>(I) * D);
+        continue;
+      }
+      out[I].setZero();
+      for (auto k = at.offset[I]; k < at.offset[I + 1]; ++k)
+        out[I] += at.N[static_cast<std::size_t>(k)] * du.segment<D>(static_cast<Index>(at.node[k]) * D);
+    }
+    return out;
+  }
+
   std::vector<Material> materials_;
   MeshfreeStepOptions options_;
   std::unique_ptr<LinearSolver> solver_;
   SparseAssembly assembly_;
   MeshfreeStencils<D> stencils_, constraint_stencils_;
   std::vector<Index> constrained_;  // nodes with a fixed dof (multipliers on)
+  std::vector<char> idle_;          // per node: in no point's cloud this step
   MeshfreeRepairCounts repairs_;
   std::vector<Index> offsets_, block_dofs_;
   Eigen::VectorXd last_increment_;

@@ -104,6 +104,9 @@ constexpr std::array<Named<SoftStiffnessRule>, 2> kFlagRules{
 constexpr std::array<Named<ImplicitBasis>, 3> kImplicitBases{
     {{"mesh", ImplicitBasis::Mesh}, {"mls", ImplicitBasis::Mls}, {"lme", ImplicitBasis::Lme}}};
 constexpr std::array<Named<bool>, 2> kInitialAccelerations{{{"zero", false}, {"body_force", true}}};
+/// solver.meshfree.mls_weight: the Gaussian less its tangent at R (C1, the default) or cut off at R (the
+/// authors' code; shape/meshfree_mls.hpp). The value is "truncated".
+constexpr std::array<Named<bool>, 2> kMlsWeights{{{"smooth", false}, {"truncated", true}}};
 
 /// fe_bodies[].inertia: the physical inertia rho (default) or the authors' code's unit density
 /// (Aulisa & Capodaglio, extraction A2).

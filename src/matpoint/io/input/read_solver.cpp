@@ -480,7 +480,8 @@ void SpecReader::read_implicit_basis(const Object& s) {
   ImplicitSpec& m = spec_.solver.implicit;
   set_if(m.basis, s.optional("basis").choice(kImplicitBases));
   const Object f(s.optional("meshfree"),
-                 {"radius_factor", "dilation_factor", "gamma", "min_nodes", "lme_max_nodes", "spacing"});
+                 {"radius_factor", "dilation_factor", "gamma", "min_nodes", "lme_max_nodes", "spacing", "mls_weight",
+                  "delete_failed_points"});
   if (m.basis == ImplicitBasis::Mesh) {
     if (s.has("meshfree"))
       s.optional("meshfree").fail("no meshfree unless solver.basis is \"mls\" or \"lme\"");
@@ -495,14 +496,19 @@ void SpecReader::read_implicit_basis(const Object& s) {
   MeshfreeSpec& out = m.meshfree;
   set_if(out.radius_factor, f.optional("radius_factor").number(kPositive));
   set_if(out.spacing, f.optional("spacing").number(kPositive));
-  static constexpr std::array<const char*, 2> kLmeOnly{"gamma", "lme_max_nodes"},
-      kMlsOnly{"dilation_factor", "min_nodes"};
-  for (const char* key : mls ? kLmeOnly : kMlsOnly)
-    if (f.has(key)) f.optional(key).fail(std::string("no ") + key + " with solver.basis " + basis);
+  static constexpr std::array<const char*, 2> kLmeOnly{"gamma", "lme_max_nodes"};
+  static constexpr std::array<const char*, 3> kMlsOnly{"dilation_factor", "min_nodes", "mls_weight"};
+  const auto refuse = [&](const auto& keys) {
+    for (const char* key : keys)
+      if (f.has(key)) f.optional(key).fail(std::string("no ") + key + " with solver.basis " + basis);
+  };
+  mls ? refuse(kLmeOnly) : refuse(kMlsOnly);
   out.dilation_factor = f.optional("dilation_factor").number(kPositive);
   set_if(out.gamma, f.optional("gamma").number(kPositive));
   if (const auto n = f.optional("min_nodes").integer(0, 1000)) out.min_nodes = static_cast<int>(*n);
   if (const auto n = f.optional("lme_max_nodes").integer(0, 1000)) out.lme_max_nodes = static_cast<int>(*n);
+  set_if(out.mls_truncated_weight, f.optional("mls_weight").choice(kMlsWeights));
+  set_if(out.delete_failed_points, f.optional("delete_failed_points").boolean());
   check_meshfree_conditions(basis);
 }
 
