@@ -7,6 +7,12 @@
 //   acceleration exactly).
 // Checked to 1e-10 relative in 2-D (Q9) and 3-D (Hex8), with the soft stiffness on (a rigid
 // translation has no gradient inside the active elements, so it adds no force).
+// The equilibrium defect's work (StepReport::defect_work; docs/theory/implicit.md, "The energy
+// audit"): with a^0 = g every step starts in equilibrium, e = 0; from a^0 = 0 the first step starts
+// with e = -M g (M the body's mass), so (1/2) u~ . e = -(1/2) M beta dt^2 g^2 with u~ = beta dt^2 g,
+// and 0 afterwards. Newmark's energy identity for the first step, Delta K - W_ext = (1/2) u~ . e -
+// (beta - 1/4) dt^2 / 2 M (|a^1|^2 - |a^0|^2), holds on the particles' K and the work of gravity
+// (from rest: K^1 - W = M g^2 dt^2 (gamma^2 / 2 - beta) = -(beta / 2 + (beta - 1/4) / 2) M g^2 dt^2).
 #include <gtest/gtest.h>
 
 #include "matpoint/implicit/particle_newmark/particle_newmark_stepper.hpp"
@@ -62,10 +68,23 @@ void check_free_fall(bool a0_from_gravity) {
   stepper.initialize(particles, state);
 
   const double dt = 0.01, beta = options.newmark.beta, gamma = options.newmark.gamma, g = -9.81;
+  double mass = 0.0;
+  for (const double m : particles.mass) mass += m;
+  const double scale = mass * g * g * dt * dt;  // the energies of one step
   double position = 0.0, velocity = 0.0;  // the expected vertical displacement and velocity
   for (int n = 1; n <= 10; ++n) {
     const StepReport report = stepper.step(particles, state, dt);
     ASSERT_TRUE(report.ok()) << report.newton.message;
+    const double defect = !a0_from_gravity && n == 1 ? -0.5 * mass * beta * dt * dt * g * g : 0.0;
+    EXPECT_NEAR(report.defect_work, defect, 1e-9 * scale) << "step " << n;
+    if (n == 1) {
+      double kinetic = 0.0, work = 0.0;
+      for (std::size_t p = 0; p < particles.size(); ++p)
+        kinetic += 0.5 * particles.mass[p] * particles.v[p].squaredNorm(),
+            work += particles.mass[p] * g * (particles.x[p] - x0[p])[D - 1];
+      const double beta_term = a0_from_gravity ? 0.0 : (beta - 0.25) * dt * dt / 2 * mass * g * g;
+      EXPECT_NEAR(kinetic - work, report.defect_work - beta_term, 1e-9 * scale);
+    }
     const double t = n * dt;
     if (a0_from_gravity) {
       position = 0.5 * g * t * t;

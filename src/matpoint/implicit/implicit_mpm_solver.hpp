@@ -192,6 +192,7 @@ class ImplicitMpmSolver {
         account_gravity_work<D>(sim_, previous_x_, sub, gravity);
         if (fe_takes_gravity_) fe_external_work_ += fe_gravity_work(gravity);
         sim_.external_work += report.boundary_work + report.load_work;
+        defect_work_ += report.defect_work;
       }
       // every solve of the step counts (one-sided walls: several)
       return SubStepOutcome{report.ok(), report.lost_particles > 0, report.iterations};
@@ -203,11 +204,13 @@ class ImplicitMpmSolver {
 
   /// history.csv: Newton's iterations and the step cuts since the previous row (per step when
   /// every step is recorded), the residual norm at the end of the last Newton solve, and the last
-  /// step's displacement of each output.node_probes node. Values: called once per row.
+  /// step's displacement of each output.node_probes node; a dynamic particle-Newmark run adds the
+  /// equilibrium defect's work since the start (StepReport::defect_work). Values: called once per row.
   [[nodiscard]] std::vector<std::string> history_columns() const {
     std::vector<std::string> columns = solver_history_columns<D>(spec_);
     for (const FeBodySpec& body : spec_.fe_bodies)
       for (const char* what : {"_kinetic_energy", "_strain_energy"}) columns.push_back(body.name + what);
+    if (audits_defect()) columns.emplace_back("equilibrium_defect_work");
     return columns;
   }
   [[nodiscard]] std::vector<double> history_values() {
@@ -219,6 +222,7 @@ class ImplicitMpmSolver {
       const auto [kinetic, strain] = fe_body_energies(static_cast<int>(b));
       row.push_back(kinetic), row.push_back(strain);
     }
+    if (audits_defect()) row.push_back(defect_work_);
     return row;
   }
 
@@ -259,6 +263,7 @@ class ImplicitMpmSolver {
     for (const auto& [dof, force] : stepper_->reactions())
       reactions.insert(reactions.end(), {static_cast<double>(dof), force});
     c.solver_state["boundary_reactions"] = std::move(reactions);
+    c.solver_state["equilibrium_defect_work"] = {defect_work_};
     if (spec_.fe_bodies.empty()) return;
     const auto& fe = stepper_->fe_bodies();
     std::vector<double> nodes, gauss;  // u, v, a per node; F per Gauss point (row-major)
@@ -290,6 +295,10 @@ class ImplicitMpmSolver {
       for (std::size_t k = 0; k + 1 < it->second.size(); k += 2)
         reactions[static_cast<Index>(it->second[k])] = it->second[k + 1];
     stepper_->set_reactions(std::move(reactions));
+    if (const auto it = c.solver_state.find("equilibrium_defect_work");
+        it != c.solver_state.end() && !it->second.empty())
+      defect_work_ = it->second[0];
+    stepper_->set_gravity_at_start(gravity_at(sim_.time));
     previous_x_ = sim_.particles.x;
     if (spec_.fe_bodies.empty()) return;
     auto& fe = stepper_->fe_bodies();
@@ -583,6 +592,11 @@ class ImplicitMpmSolver {
   // displacement at the start of the step it is summed over.
   bool fe_takes_gravity_ = false;
   double fe_external_work_ = 0.0;
+  double defect_work_ = 0.0;  // the sum of StepReport::defect_work (history.csv equilibrium_defect_work)
+  /// A dynamic particle-Newmark run (Aulisa & Capodaglio) writes the equilibrium defect's work.
+  [[nodiscard]] bool audits_defect() const {
+    return spec_.solver.kind != SolverKind::ImplicitUl && !spec_.solver.implicit.static_analysis;
+  }
   std::vector<Vec<D>> fe_displacement_before_;
   ImplicitTotals totals_;
   HistoryMarks marks_;

@@ -87,6 +87,11 @@ struct StepReport {
   double load_work = 0.0;         // work of the surface loads (trapezoidal)
   int solves = 0;                 // Newton solves (one-sided boundaries: one per change of the held set)
   int iterations = 0;             // Newton iterations of all of them
+  /// Particle Newmark only: the work of the step-start equilibrium defect e = M a^n + f_int^n - f_ext^n
+  /// over the step, (1/2) u~ . e = (1/2) sum_p [m_p (a_p^n - b^n) . u~_p + V0_p tau_p^n : grad~ u~*_p]
+  /// (docs/theory/implicit.md, "The energy audit": K + U changes by this, up to O(dt^3) and a
+  /// bounded (beta - 1/4) term).
+  double defect_work = 0.0;
   [[nodiscard]] bool ok() const { return lost_particles == 0 && newton.converged(); }
 };
 
@@ -147,6 +152,8 @@ class ParticleNewmarkStepper {
   [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
   /// The body force per unit mass of the next steps (loads.gravity_scale changes it in time).
   void set_gravity(const Vec<D>& gravity) { options_.gravity = gravity; }
+  /// After a restart: the body force of the last completed step, which a^n balances (defect work).
+  void set_gravity_at_start(const Vec<D>& gravity) { gravity_at_start_ = gravity; }
   /// u~ of Dirichlet dofs that move in the next step (dof, displacement over the step); the other
   /// Dirichlet dofs stay at 0.
   void set_prescribed(std::vector<std::pair<Index, double>> prescribed) {
@@ -166,8 +173,9 @@ class ParticleNewmarkStepper {
   bool locate(const ParticleSet<D>& particles, ImplicitParticleState<D>& state, StepReport& report) const;
   void build_quadrature(const ParticleSet<D>& particles, const ImplicitParticleState<D>& state,
                         const NewmarkCoefficients& c);
-  void commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state, const Eigen::VectorXd& u,
-              double dt);
+  /// Returns the step's equilibrium-defect work (StepReport::defect_work).
+  double commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state, const Eigen::VectorXd& u,
+                double dt);
   /// The velocity at t^n behind each face of background element e: an FE body's, taken at the
   /// face's mid-side node on quadratic faces (Q9, T6: the authors' code, A4) and as the mean of the
   /// two corners on linear ones (Q4, T3), where every node of the face is an FE node; else 0.
@@ -242,6 +250,7 @@ class ParticleNewmarkStepper {
   std::vector<std::pair<Index, double>> prescribed_;
   std::map<Index, double> reaction_;  // the last converged reaction of each moving dof
   std::vector<FaceLoad<D>> loads_end_, loads_start_;
+  Vec<D> gravity_at_start_ = options_.gravity;  // b^n: the body force of the previous step (defect work)
   OneSidedBoundary<D> one_sided_;
   std::vector<char> round_dirichlet_;  // dirichlet_ with the one-sided dofs as held this round
   fem::FeBodies<E> fe_;
@@ -409,7 +418,8 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   if (report.newton.converged()) {
     report.boundary_work = boundary_work(u);
     report.load_work = system_.surface_load_work(u);
-    commit(particles, state, u, dt);
+    report.defect_work = commit(particles, state, u, dt);
+    gravity_at_start_ = options_.gravity;  // the body force a^{n+1} balances
     if (!fe_.empty()) {
       fe_.commit_nodes(u, options_.newmark, dt, options_.static_analysis, mesh_.nodes, reference_);
       extension_->apply(fe_.displacement, reference_);  // the background's new x~ (8b)
@@ -436,12 +446,17 @@ void ParticleNewmarkStepper<E, Material>::commit_gauss_point(std::size_t qo, con
 }
 
 template <class E, class Material>
-void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state,
-                                                 const Eigen::VectorXd& u, double dt) {
+double ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, ImplicitParticleState<D>& state,
+                                                   const Eigen::VectorXd& u, double dt) {
   const NewmarkCoefficients c(options_.newmark, dt);
   const double gamma = options_.newmark.gamma;
   const auto count = static_cast<std::ptrdiff_t>(q_.particle.size());
-#pragma omp parallel for if (count > kParallelMinimum)
+  // The equilibrium defect's work (StepReport::defect_work): Aulisa & Capodaglio's particle Newmark
+  // (eqs. (17)-(21)) carries a_p^n from the previous step's grid; on this step's grid
+  // M a^n + f_int^n - f_ext^n need not vanish, and Newmark's energy identity gains (1/2) u~ . e.
+  const bool audit = !options_.static_analysis && !options_.newmark_at_grid;
+  double defect = 0.0;
+#pragma omp parallel for reduction(+ : defect) if (count > kParallelMinimum)
   for (std::ptrdiff_t o = 0; o < count; ++o) {
     const auto qo = static_cast<std::size_t>(o);
     if (q_.particle[qo] < 0) {  // a Gauss point of an FE body
@@ -468,6 +483,12 @@ void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, Impl
     for (int I = 0; I < E::kNodes; ++I)
       for (int i = 0; i < D; ++i)
         for (int j = 0; j < D; ++j) H(i, j) += ue[static_cast<std::size_t>(I * D + i)] * q_.G[qo](I, j);
+    if (audit) {  // tau^n = J^n sigma^n (sigma^n: Hooke's under small strain, on reference gradients)
+      const double J = options_.small_strain ? 1.0 : particles.F[p].determinant();
+      const Mat<D> grad = H - Mat<D>::Identity();
+      defect += 0.5 * (particles.mass[p] * (state.acceleration[p] - gravity_at_start_).dot(up) +
+                       particles.volume0[p] * J * (particles.stress[p].cwiseProduct(grad)).sum());
+    }
     if (!options_.static_analysis) {
       // (19) at the particle, or Iaconeta (47): sum_I N_I a_I^{n+1}, the same expression with the
       // interpolated nodal predictor; then (17) / Iaconeta (48).
@@ -491,6 +512,7 @@ void ParticleNewmarkStepper<E, Material>::commit(ParticleSet<D>& particles, Impl
         updated_stress_of<D>(m, particles.F[p], material_history(particles, p), sigma_zz, dt);
     if constexpr (D == 2) particles.stress_zz[p] = sigma_zz;
   }
+  return defect;
 }
 
 }  // namespace matpoint::implicit
