@@ -219,12 +219,12 @@ TEST(Checkpoint, RoundTripAfterParticlesWereDeleted) {
   auto& a = written.particles;
   std::vector<char> gone(a.size(), 0);
   gone[0] = gone[3] = gone[a.size() - 1] = 1;  // storage 0 holds the largest id (fill reverses them)
-  const long second = a.id[1];  // the largest id left
+  const long second = a.id[1];                 // the largest id left
   remove_particles(a, gone);
   ASSERT_EQ(a.id[0], second);
   const fs::path dir = scratch("round_trip_deleted");
-  write_checkpoint<2>(dir / kCheckpointFile, dir / kPreviousCheckpointFile, written, counters(), history_of(2, 1),
-                      spec.echo);
+  write_checkpoint<2>(dir / kCheckpointFile, dir / kPreviousCheckpointFile, written, counters(),
+                      history_of(2, 1), spec.echo);
   EXPECT_EQ(Hdf5Reader(dir / kCheckpointFile).shape("simulation/initial_position")[0],
             static_cast<hsize_t>(second + 1));
   Simulation<2> read = build_simulation<2>(spec);

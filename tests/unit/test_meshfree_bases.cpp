@@ -163,7 +163,8 @@ TEST(MeshfreeMls, SmoothWeightIsContinuousAcrossTheCutRadius) {
                n4 = largest_jump_across_the_cut(MlsWeight::Smooth, 1e-4, false),
                g3 = largest_jump_across_the_cut(MlsWeight::Smooth, 1e-3, true),
                g4 = largest_jump_across_the_cut(MlsWeight::Smooth, 1e-4, true);
-  std::printf("smooth weight, jumps at eps = 1e-3 / 1e-4: N %.3g / %.3g, h grad N %.3g / %.3g\n", n3, n4, g3, g4);
+  std::printf("smooth weight, jumps at eps = 1e-3 / 1e-4: N %.3g / %.3g, h grad N %.3g / %.3g\n", n3, n4, g3,
+              g4);
   EXPECT_LT(n4, 1e-6);
   EXPECT_NEAR(n3 / n4, 100.0, 5.0);  // O(eps^2)
   EXPECT_LT(g4, 1e-3);

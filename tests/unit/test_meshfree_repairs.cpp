@@ -86,8 +86,12 @@ void check_variable_radius(MlsWeight form) {
   }
 }
 
-TEST(MeshfreeRepairs, MlsVariableRadiusReachesTheMinimumNodeCount) { check_variable_radius(MlsWeight::Smooth); }
-TEST(MeshfreeRepairs, MlsVariableRadiusWithTheTruncatedWeight) { check_variable_radius(MlsWeight::Truncated); }
+TEST(MeshfreeRepairs, MlsVariableRadiusReachesTheMinimumNodeCount) {
+  check_variable_radius(MlsWeight::Smooth);
+}
+TEST(MeshfreeRepairs, MlsVariableRadiusWithTheTruncatedWeight) {
+  check_variable_radius(MlsWeight::Truncated);
+}
 
 // Nodes left of x = 0.5 removed within 3.5 h of x_p = (0.47, 0.5): the nodes within R all have
 // x >= 0.5, so x_p lies outside their convex hull and Newton on the dual cannot converge (eq. (61)

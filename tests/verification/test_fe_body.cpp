@@ -158,7 +158,14 @@ BarRun run_bar(int cells, int steps_per_period, double periods, bool unit_inerti
     out.tip.push_back(fe.displacement[static_cast<std::size_t>(tip)][0]);
     // K + U - f . u: the kinetic and strain columns of history.csv, and the load's potential
     const auto row = solver.history_values();
-    const double kinetic = row[row.size() - 2], strain = row[row.size() - 1];
+    const auto columns = solver.history_columns();  // the FE body's columns, by name
+    const auto column = [&](const std::string& suffix) {
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        if (columns[c].ends_with(suffix)) return row.at(c);
+      ADD_FAILURE() << "no history column *" << suffix;
+      return 0.0;
+    };
+    const double kinetic = column("_kinetic_energy"), strain = column("_strain_energy");
     double potential = 0.0;  // - sum_g m_g g . u(x_g), the gravity (per unit mass) on rho V0 always
     const auto& rule = fem::fe_gauss_rule<mesh::Q4>();
     for (Index k = 0; k < fe.element_count(); ++k) {

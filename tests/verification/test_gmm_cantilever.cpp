@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "matpoint/implicit/meshfree/meshfree_stepper.hpp"
@@ -93,9 +94,9 @@ class GmmCantilever : public ::testing::Test {
 };
 
 // Reading A of the paper's "R = 2h2" (R = sqrt(2 h^2), the cell diagonal; R_eff = R / 2) with the
-// authors' truncated Gaussian (extraction §6.2): Fig. 7's description holds. MLS's error curve coincides with FEM's (within a factor 1.5 at each h, on a
-// log-log plot spanning two decades), LME's lies above MLS's, and both fall as h^2 (order 1.8-2.2
-// between the two finer meshes, the bound of the MPM test).
+// authors' truncated Gaussian (extraction §6.2): Fig. 7's description holds. MLS's error curve coincides with
+// FEM's (within a factor 1.5 at each h, on a log-log plot spanning two decades), LME's lies above MLS's, and
+// both fall as h^2 (order 1.8-2.2 between the two finer meshes, the bound of the MPM test).
 TEST_F(GmmCantilever, CellDiagonalRadiusReproducesFigure7) {
   double mls[3], lme[3];
   for (int k = 0; k < 3; ++k) {
@@ -115,17 +116,36 @@ TEST_F(GmmCantilever, CellDiagonalRadiusReproducesFigure7) {
 }
 
 // Reading B (R = 2 sqrt(2) h, our default, extraction A5): the wider clouds are far more accurate
-// than the Q4 FEM at every h (here the paper's "MLS = FEM" does not hold), and the error falls.
+// than the Q4 FEM at every h (here the paper's "MLS = FEM" does not hold), and with LME and the
+// truncated MLS weight the error falls.
 TEST_F(GmmCantilever, TwiceTheCellDiagonalIsMoreAccurateThanFem) {
-  for (auto basis : {MeshfreeBasis::Mls, MeshfreeBasis::Lme}) {
+  for (auto [basis, weight] : {std::pair{MeshfreeBasis::Mls, MlsWeight::Truncated},
+                               std::pair{MeshfreeBasis::Lme, MlsWeight::Smooth}}) {
     double previous = 1.0;
     for (int k = 0; k < 3; ++k) {
-      const double error = std::abs(kPaperReference + point_a_deflection(basis, kH[k], 2.0 * std::sqrt(2.0)));
+      const double error =
+          std::abs(kPaperReference + point_a_deflection(basis, kH[k], 2.0 * std::sqrt(2.0), weight));
       EXPECT_LT(error, kFemError[k]) << "h = " << kH[k];
       EXPECT_LT(error, previous) << "h = " << kH[k];
       previous = error;
     }
   }
+}
+
+// The smooth MLS weight (our default) at R = 2 sqrt(2) h: within 1e-3 of the reference already at
+// h = 0.5 (measured 2e-4 to 4e-4, an order of magnitude below the Q4 FEM's error at h = 0.125), and
+// converging: the change from h to h / 2 falls more than fourfold. Its values (about -0.6747 m) lie
+// about 4e-4 beyond the reference, probably because the clamp holds the field at the fixed nodes
+// only (a support a little softer than a clamped face); at these h that offset is larger than the
+// error left, so the error against 0.67433 m does not fall (README.md of the example).
+TEST_F(GmmCantilever, SmoothMlsWeightIsAccurateAndConverges) {
+  double u[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = point_a_deflection(MeshfreeBasis::Mls, kH[k], 2.0 * std::sqrt(2.0), MlsWeight::Smooth);
+    EXPECT_LT(std::abs(kPaperReference + u[k]), 1e-3) << "h = " << kH[k];
+    EXPECT_LT(std::abs(kPaperReference + u[k]), kFemError[2]) << "h = " << kH[k];
+  }
+  EXPECT_LT(std::abs(u[2] - u[1]), std::abs(u[1] - u[0]) / 4);
 }
 
 }  // namespace

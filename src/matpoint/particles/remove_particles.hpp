@@ -27,7 +27,8 @@ void keep_unflagged(Values& values, const std::vector<char>& gone, std::size_t s
 /// reused: the survivors keep theirs, so ids are no longer 0 .. n - 1 (io/checkpoint.cpp allows it).
 template <int D>
 void remove_particles(ParticleSet<D>& ps, const std::vector<char>& gone) {
-  for_each_array(ps, [&](const char*, auto& values, std::size_t stride) { keep_unflagged(values, gone, stride); });
+  for_each_array(
+      ps, [&](const char*, auto& values, std::size_t stride) { keep_unflagged(values, gone, stride); });
   ps.recorded_wave_speed = -1.0;  // the set of particles changed (particle_set.hpp)
 }
 

@@ -78,8 +78,7 @@ MeshfreeStatus shepard_from_weights(std::span<double> N, std::span<Vec<D>> dN) {
 /// matrix singular: fewer than D + 1 nodes in general position) or Empty (no weight at all).
 template <int D>
 MeshfreeStatus mls_shape_functions(const Vec<D>& x, std::span<const Vec<D>> nodes, double dilation,
-                                   std::span<double> N, std::span<Vec<D>> dN, MlsWeight form,
-                                   double radius) {
+                                   std::span<double> N, std::span<Vec<D>> dN, MlsWeight form, double radius) {
   using Basis = Eigen::Matrix<double, D + 1, 1>;
   using Moment = Eigen::Matrix<double, D + 1, D + 1>;
   const double inv_s = 1.0 / dilation, s_cut = (radius * inv_s) * (radius * inv_s);

@@ -38,11 +38,12 @@ struct MeshfreeParameters {
   double spacing = 1.0;                         // h, the nodal spacing of the generating mesh
   double radius_factor = 2.0 * std::sqrt(2.0);  // R / h (extraction A5)
   double dilation_factor = std::sqrt(2.0);      // MLS R_eff / h (R_eff = R / 2, extraction A5)
-  MlsWeight mls_weight = MlsWeight::Smooth;     // C1 at R, or truncated as in the authors' code (meshfree_mls.hpp)
-  double gamma = 1.8;                           // LME beta h^2 (eq. (61))
-  std::size_t min_nodes = 0;                    // MLS repair: at least this many nodes per cloud (0: off)
-  std::size_t lme_max_nodes = 0;                // LME repair: augment the cloud up to this size (0: off)
-  LmeParameters lme{};                          // Newton settings; lme.beta is set from gamma and h
+  MlsWeight mls_weight =
+      MlsWeight::Smooth;          // C1 at R, or truncated as in the authors' code (meshfree_mls.hpp)
+  double gamma = 1.8;             // LME beta h^2 (eq. (61))
+  std::size_t min_nodes = 0;      // MLS repair: at least this many nodes per cloud (0: off)
+  std::size_t lme_max_nodes = 0;  // LME repair: augment the cloud up to this size (0: off)
+  LmeParameters lme{};            // Newton settings; lme.beta is set from gamma and h
 
   double radius() const { return radius_factor * spacing; }
   double dilation() const { return dilation_factor * spacing; }

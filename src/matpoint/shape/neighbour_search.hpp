@@ -52,6 +52,12 @@ class NodeCellList {
       lower_ = lower_.cwiseMin(x);
       upper = upper.cwiseMax(x);
     }
+    // Cells wider than asked when the nodes spread far (a node thrown off the body): at most about
+    // 8 cells per node, so the list's memory stays bounded; the queries scan more cells then.
+    const double most = std::max(64.0, 8.0 * static_cast<double>(nodes.size()));
+    double wanted = 1.0;
+    for (int a = 0; a < D; ++a) wanted *= (upper[a] - lower_[a]) / cell_ + 1.0;
+    if (wanted > most) cell_ *= std::pow(wanted / most, 1.0 / D);
     for (int a = 0; a < D; ++a) dims_[a] = floor_to_int((upper[a] - lower_[a]) / cell_) + 1;
     std::size_t cells = 1;
     for (int a = 0; a < D; ++a) cells *= static_cast<std::size_t>(dims_[a]);

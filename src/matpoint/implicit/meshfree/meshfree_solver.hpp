@@ -356,7 +356,7 @@ class MeshfreeSolver {
   MeshfreeRepairCounts restored_repairs_;  // of the sessions before a restart
   std::int64_t deleted_points_ = 0;        // delete_failed_points: points deleted so far, and their mass
   double deleted_mass_ = 0.0;
-  std::vector<std::size_t> probe_nodes_;   // output.node_probes: body nodes
+  std::vector<std::size_t> probe_nodes_;  // output.node_probes: body nodes
   std::vector<Vec<D>> probe_u_;
   StepSizeControl step_size_;
 };

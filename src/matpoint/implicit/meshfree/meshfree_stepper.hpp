@@ -194,6 +194,13 @@ class MeshfreeStepper {
   /// The step's clouds, constraints and assembly blocks at the present positions; false (with the
   /// reason in result) when a point or a constraint has no usable shape functions.
   bool prepare(const MeshfreeBody<D>& body, NewtonResult& result) {
+    result.status = NewtonStatus::AssemblyFailed;
+    for (const auto* positions : {&body.node_x, &body.point_x})
+      for (const auto& x : *positions)
+        if (!x.allFinite()) {
+          result.message = "a meshfree node or point has a non-finite position";
+          return false;
+        }
     build_meshfree_stencils<D>(body.point_x, body.node_x, options_.shape, stencils_);
     repairs_ += stencils_.repairs;
     result.status = NewtonStatus::AssemblyFailed;
@@ -248,9 +255,13 @@ class MeshfreeStepper {
             break;
           }
     build_meshfree_stencils<D>(x, body.node_x, options_.shape, constraint_stencils_);
+    // A node on the hull boundary is ill conditioned for LME, and still exact; an MLS node whose
+    // cloud has become a line (a floor node the body is leaving) has Shepard functions, whose
+    // weighted mean is still a valid condition on the field there.
     for (const auto st : constraint_stencils_.status)
-      if (st != MeshfreeStatus::Ok && st != MeshfreeStatus::IllConditioned) return false;
-    return true;  // a node on the hull boundary is ill conditioned for LME, and still exact
+      if (st != MeshfreeStatus::Ok && st != MeshfreeStatus::IllConditioned && st != MeshfreeStatus::Shepard)
+        return false;
+    return true;
   }
 
   [[nodiscard]] Index multiplier_dofs() const { return static_cast<Index>(constrained_.size()) * D; }
@@ -263,7 +274,8 @@ class MeshfreeStepper {
     std::vector<double> mass(body.node_x.size(), 0.0);  // diagonal of the consistent mass, sum_p m_p N_I^2
     for (std::size_t p = 0; p < stencils_.size(); ++p)
       for (auto k = stencils_.offset[p]; k < stencils_.offset[p + 1]; ++k)
-        mass[static_cast<std::size_t>(stencils_.node[k])] += body.point_mass[p] * stencils_.N[k] * stencils_.N[k];
+        mass[static_cast<std::size_t>(stencils_.node[k])] +=
+            body.point_mass[p] * stencils_.N[k] * stencils_.N[k];
     const double largest = mass.empty() ? 0.0 : *std::max_element(mass.begin(), mass.end());
     idle_.assign(mass.size(), 0);
     for (std::size_t I = 0; I < mass.size(); ++I) {

@@ -479,9 +479,8 @@ namespace matpoint::input_detail {
 void SpecReader::read_implicit_basis(const Object& s) {
   ImplicitSpec& m = spec_.solver.implicit;
   set_if(m.basis, s.optional("basis").choice(kImplicitBases));
-  const Object f(s.optional("meshfree"),
-                 {"radius_factor", "dilation_factor", "gamma", "min_nodes", "lme_max_nodes", "spacing", "mls_weight",
-                  "delete_failed_points"});
+  const Object f(s.optional("meshfree"), {"radius_factor", "dilation_factor", "gamma", "min_nodes",
+                                          "lme_max_nodes", "spacing", "mls_weight", "delete_failed_points"});
   if (m.basis == ImplicitBasis::Mesh) {
     if (s.has("meshfree"))
       s.optional("meshfree").fail("no meshfree unless solver.basis is \"mls\" or \"lme\"");
