@@ -459,8 +459,9 @@ TEST(Restart, ImplicitRunContinuesBitForBit) {
 
 // The Galerkin meshfree method (solver.basis "lme", Iaconeta 2017 §4.2): a block on a fixed floor,
 // thrown down and sideways, vibrating. The nodes are Lagrangian and carry Newmark's history, so the
-// checkpoint must keep their positions, velocities and accelerations (solver/meshfree_nodes); the
-// particles carry the rest.
+// checkpoint must keep their positions, velocities and accelerations (solver/meshfree_nodes), and
+// the points' accelerations, from which the next step projects the nodes' history
+// (solver/meshfree_point_accelerations); the particles carry the rest.
 TEST(Restart, MeshfreeRunContinuesBitForBit) {
   const Spec spec = parse_spec(R"({"mesh": {"element": "q4", "min": [0, 0], "max": [1, 1], "cells": [4, 4]},
     "materials": [{"name": "m", "model": "neo_hookean", "density": 1000, "E": 2e5, "nu": 0.3}],
@@ -480,7 +481,8 @@ TEST(Restart, MeshfreeRunContinuesBitForBit) {
   const fs::path tmp = fs::temp_directory_path();
   const Hdf5Reader whole(tmp / "matpoint_checkpoint_meshfree_whole" / kCheckpointFile),
       parts(tmp / "matpoint_checkpoint_meshfree_parts" / kCheckpointFile);
-  for (const char* name : {"solver/meshfree_nodes", "solver/meshfree_repairs", "solver/history_marks"})
+  for (const char* name : {"solver/meshfree_nodes", "solver/meshfree_repairs", "solver/history_marks",
+                           "solver/meshfree_point_accelerations"})
     EXPECT_TRUE(same(whole.doubles(name, whole.shape(name)), parts.doubles(name, parts.shape(name))))
         << name << " differs";
 }

@@ -117,5 +117,39 @@ TEST_F(GmmRun, FreeFallIsExactWithTheInitialAccelerationSolve) {
     }
 }
 
+// Walls (meshfree_solver.hpp): the mesh is discarded, so the floor's condition held only the
+// body's nodes that started on it. A block that starts 0.25 m above the fixed floor has none: it
+// fell through it. Now the floor holds the plane: the block lands (at t = sqrt(2 * 0.25 / g) =
+// 0.226 s, at v = sqrt(2 g 0.25) = 2.21 m/s) and stays on it; a node is held where the step that
+// crossed the plane left it, so no point goes deeper than one step's travel v dt = 0.022 m.
+TEST_F(GmmRun, BlockFallingOntoTheFloorLandsOnIt) {
+  const mesh::Mesh<2> m = mesh::structured_rectangle(
+      mesh::ElementShape::Q4, mesh::AxisSpacing::uniform(0, 1, 8), mesh::AxisSpacing::uniform(0, 0.75, 6));
+  for (const char* basis : {"mls", "lme"}) {
+    const Spec spec = parse_spec(std::string(R"({
+      "mesh": {"element": "q4", "min": [0, 0], "max": [1, 0.75], "cells": [8, 6]},
+      "materials": [{"name": "m", "model": "neo_hookean", "density": 1000, "E": 1e6, "nu": 0.3}],
+      "bodies": [{"material": "m", "particles_per_cell": 2, "placement": "gauss",
+                  "shape": {"type": "box", "min": [0.25, 0.25], "max": [0.75, 0.5]}}],
+      "boundary_conditions": [{"type": "fixed", "boundary": "bottom"}],
+      "loads": {"gravity": [0, -9.81]},
+      "solver": {"type": "implicit_ul", "basis": ")") +
+                                 basis + R"(", "dt": 0.01, "end_time": 0.4,
+                 "implicit": {"initial_acceleration": "body_force"}},
+      "output": {"plots": false}})");
+    implicit::MeshfreeSolver<2> solver(spec, m);
+    const double g = 9.81, impact_speed = std::sqrt(2 * g * 0.25), dt = 0.01;
+    double lowest = 1.0;
+    for (int s = 0; s < 40; ++s) {
+      solver.step(dt);
+      for (const auto& x : solver.sim().particles.x) lowest = std::min(lowest, x[1]);
+    }
+    std::printf("GMM-%s block onto the floor: lowest point y = %.4f m, %lld nodes held by the floor\n", basis,
+                lowest, static_cast<long long>(solver.nodes_held_by_walls()));
+    EXPECT_GT(solver.nodes_held_by_walls(), 0) << basis;
+    EXPECT_GT(lowest, -impact_speed * dt) << basis;
+  }
+}
+
 }  // namespace
 }  // namespace matpoint

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <tuple>
 
 #include "matpoint/core/errors.hpp"
 #include "matpoint/explicit/deformation.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/material/material.hpp"
 #include "matpoint/material/wave_speed.hpp"
+#include "matpoint/run/energy_guard.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -186,6 +188,40 @@ TEST(EnergyGuard, StopsNairnsBarWithCpGimpAndFmpm16) {
   spec.checks.clear();
   const auto unguarded = run_quietly(spec, "guard_bar_off");
   EXPECT_GT(unguarded.summary["time_reached"].get<double>(), failed_at) << unguarded.message;
+}
+
+// The implicit solvers check the energy balance after every step, the explicit one every tenth
+// (its pass over a million particles is not free). Found by the meshfree column (gmm-mls.json,
+// session 19): checked every tenth step, it ran from a sound state at t = 0.9 s to positions of
+// 1e5 m within ten steps, on which Newton's relative criteria were met, and stopped later with a
+// bare "assembly failed". Here the energy is doubled from nowhere at step 3.
+TEST(EnergyGuard, ChecksEveryStepWhenAskedAndEveryTenthOtherwise) {
+  const Spec spec = parse_spec(R"({
+    "grid": {"dim": 2, "min": [0, 0], "max": [1, 1], "cell_size": 0.1},
+    "materials": [{"name": "m", "model": "neo_hookean", "density": 1000, "E": 1e6, "nu": 0.3}],
+    "bodies": [{"material": "m", "shape": {"type": "box", "min": [0.3, 0.3], "max": [0.7, 0.7]},
+                "particles_per_cell": 2, "velocity": [1, 0]}],
+    "solver": {"dt": 1e-3, "end_time": 1}
+  })");
+  Simulation<2> sim = build_simulation<2>(spec);
+  History history;
+  HistorySample start;
+  for (std::size_t p = 0; p < sim.particles.size(); ++p)
+    start.kinetic_energy += 0.5 * sim.particles.mass[p] * sim.particles.v[p].squaredNorm();
+  history.samples.push_back(start);
+  for (auto& v : sim.particles.v) v *= std::sqrt(2.0);  // K doubles: growth 1 > 0.5 below
+  const auto no_other = [] { return std::tuple{0.0, 0.0, 0.0}; };
+  EnergyGuard every_tenth(0.5, history), every_step(0.5, history, /*every_step=*/true);
+  sim.step = 3;
+  EXPECT_NO_THROW(every_tenth.after_step(sim, false, no_other));
+  try {
+    every_step.after_step(sim, false, no_other);
+    ADD_FAILURE() << "the every-step guard let a doubled energy pass";
+  } catch (const NumericalFailure& failure) {
+    EXPECT_NE(std::string(failure.what()).find("lower solver.dt"), std::string::npos) << failure.what();
+  }
+  sim.step = 10;
+  EXPECT_THROW(every_tenth.after_step(sim, false, no_other), NumericalFailure);
 }
 
 /// The count of the cpGIMP warning in summary.json (0 when there is none).

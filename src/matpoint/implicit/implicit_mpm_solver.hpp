@@ -69,7 +69,8 @@ class ImplicitMpmSolver {
     // Iaconeta's projection to the nodes (eqs. (38)-(41), nodal_projection.hpp) divides by
     // sum_p N_I m_p: quadratic elements (Q9, T6) have negative shape values and nodal masses near 0
     // or below. A static analysis has no projection.
-    if (spec.solver.kind == SolverKind::ImplicitUl && E::kDegree >= 2 && !spec.solver.implicit.static_analysis)
+    if (spec.solver.kind == SolverKind::ImplicitUl && E::kDegree >= 2 &&
+        !spec.solver.implicit.static_analysis)
       throw InputError({{"mesh.file", spec.mesh.file,
                          "a mesh of linear elements (T3, Q4, Hex8) for a dynamic solver.type \"implicit_ul\" "
                          "(quadratic ones only with implicit.analysis \"static\"; the projection of eqs. "
@@ -163,6 +164,8 @@ class ImplicitMpmSolver {
   /// An output time one to two steps away is reached in two equal steps, never a full step and a
   /// tiny one (run/run_loop.hpp steps_to_land).
   static constexpr bool kEvenStepsToLand = true;
+  /// The energy guard after every step (run/energy_guard.hpp): a step costs a Newton solve.
+  static constexpr bool kCheckEnergyEveryStep = true;
 
   /// The next step: solver.dt, the schedule's, or the adaptive one (cut steps are retried
   /// inside step()).
@@ -478,7 +481,8 @@ class ImplicitMpmSolver {
       if (b >= 0 && fe.body_of(k) != b) continue;
       const auto nodes = mesh_.element_nodes(fe.mesh_element(k));
       for (Index i = 0; i < per; ++i)
-        visit(static_cast<std::size_t>(k * per + i), E::values(rule.points[static_cast<std::size_t>(i)]), nodes);
+        visit(static_cast<std::size_t>(k * per + i), E::values(rule.points[static_cast<std::size_t>(i)]),
+              nodes);
     }
   }
   /// sum_I N_I f_I over an element's nodes (f: a nodal field, or a difference of two).
@@ -486,7 +490,8 @@ class ImplicitMpmSolver {
   static Vec<D> interpolate(const Eigen::Matrix<double, E::kNodes, 1>& N, std::span<const Index> nodes,
                             Field&& f) {
     Vec<D> value = Vec<D>::Zero();
-    for (int I = 0; I < E::kNodes; ++I) value += N[I] * f(static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)]));
+    for (int I = 0; I < E::kNodes; ++I)
+      value += N[I] * f(static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)]));
     return value;
   }
 
@@ -497,7 +502,8 @@ class ImplicitMpmSolver {
     const auto& fe = stepper_->fe_bodies();
     double kinetic = 0.0, strain = 0.0;
     for_each_fe_gauss_point(b, [&](std::size_t g, const auto& N, std::span<const Index> nodes) {
-      kinetic += 0.5 * fe.mass[g] * interpolate(N, nodes, [&](std::size_t n) { return fe.velocity[n]; }).squaredNorm();
+      kinetic += 0.5 * fe.mass[g] *
+                 interpolate(N, nodes, [&](std::size_t n) { return fe.velocity[n]; }).squaredNorm();
       if (spec_.solver.implicit.small_strain) {  // Hooke's energy 1/2 sigma : eps, as the residual
         const Mat<D> eps = 0.5 * (fe.F[g] + fe.F[g].transpose()) - Mat<D>::Identity();
         strain += fe.volume0[g] * 0.5 * fe.stress[g].cwiseProduct(eps).sum();
@@ -522,8 +528,8 @@ class ImplicitMpmSolver {
     double work = 0.0;
     for_each_fe_gauss_point(-1, [&](std::size_t g, const auto& N, std::span<const Index> nodes) {
       if (fe.body_force_scale[g] == 0.0) return;
-      const Vec<D> du =
-          interpolate(N, nodes, [&](std::size_t n) -> Vec<D> { return fe.displacement[n] - fe_displacement_before_[n]; });
+      const Vec<D> du = interpolate(
+          N, nodes, [&](std::size_t n) -> Vec<D> { return fe.displacement[n] - fe_displacement_before_[n]; });
       work += fe.mass[g] * fe.body_force_scale[g] * b.dot(du);
     });
     return work;

@@ -36,7 +36,11 @@ class EnergyGuard {
 
   /// `max_growth` empty: off. `history`: the run's rows so far (a restart's included): B(0) and
   /// the scale come from them, so a restarted run decides exactly as the uninterrupted one.
-  EnergyGuard(std::optional<double> max_growth, const History& history) : max_growth_(max_growth) {
+  /// `every_step`: check after every step (implicit solvers: a step's Newton solve costs far more
+  /// than the pass, and a run that diverges between checks can reach a state where Newton's
+  /// relative criteria are met on garbage); their advice is then about the time step, not Courant.
+  EnergyGuard(std::optional<double> max_growth, const History& history, bool every_step = false)
+      : max_growth_(max_growth), interval_(every_step ? 1 : kInterval), implicit_(every_step) {
     if (history.samples.empty()) return;
     const auto& first = history.samples.front();
     scale_.initial = first.kinetic_energy + first.strain_energy;
@@ -51,7 +55,7 @@ class EnergyGuard {
   /// `other`: the energies of bodies that are not particles (FE bodies), called only when checked.
   template <int D, class OtherEnergy>
   void after_step(const Simulation<D>& sim, bool recorded, const OtherEnergy& other) {
-    if (!max_growth_ || (!recorded && sim.step % kInterval != 0)) return;
+    if (!max_growth_ || (!recorded && sim.step % interval_ != 0)) return;
     const auto [other_kinetic, other_strain, other_work] = other();
     // This rank's particle sums and its part of the accumulated works (one rank: the whole),
     // added over the ranks in rank order: every rank decides on the same bits (a collective).
@@ -68,7 +72,8 @@ class EnergyGuard {
     std::ostringstream what;
     what << "energy balance K + U + D - W_ext = " << b << " rose from " << balance0_ << " by " << growth
          << " times the energy scale " << scale << " (solver.max_energy_growth = " << *max_growth_
-         << "): the run is unstable; lower solver.courant (docs/theory/stability.md)";
+         << (implicit_ ? "): the run is unstable; lower solver.dt or look for the particles that go first"
+                       : "): the run is unstable; lower solver.courant (docs/theory/stability.md)");
     throw NumericalFailure(sim.step, sim.time, fastest_particle(sim), what.str());
   }
 
@@ -110,6 +115,8 @@ class EnergyGuard {
   }
 
   std::optional<double> max_growth_;
+  long interval_ = kInterval;
+  bool implicit_ = false;
   EnergyScale scale_;
   double balance0_ = 0.0;
 };

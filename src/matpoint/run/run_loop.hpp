@@ -21,6 +21,8 @@
 //   OtherBodiesEnergy other_bodies_energy() const;   energies of bodies that are not particles
 //   static constexpr bool kEvenStepsToLand = true;
 //                                  reach an output time without a tiny last step (steps_to_land)
+//   static constexpr bool kCheckEnergyEveryStep = true;
+//                                  the energy guard after every step, not every 10th (implicit)
 #pragma once
 
 #include <algorithm>
@@ -327,8 +329,9 @@ RunResult run_loop(const Spec& spec, const RunOptions& options, Solver& solver) 
 
   int interrupted = 0;
   const double end_time = spec.solver.end_time;
-  EnergyGuard energy_guard(spec.solver.max_energy_growth, outputs.history());
   constexpr bool kEvenSteps = requires { requires Solver::kEvenStepsToLand; };
+  constexpr bool kEveryStep = requires { requires Solver::kCheckEnergyEveryStep; };
+  EnergyGuard energy_guard(spec.solver.max_energy_growth, outputs.history(), kEveryStep);
   while (sim.time < end_time * (1 - 1e-12) &&
          (spec.solver.max_steps == 0 || sim.step < spec.solver.max_steps)) {
     // The solver's step (explicit: Nairn 2026 §1.8, dt = C dx / max_p max(c_p, |V_p|) from the

@@ -1,5 +1,7 @@
 #include "matpoint/run/run_summary.hpp"
 
+#include <sys/resource.h>
+
 #include <cmath>
 
 #include "matpoint/analysis/measures_eval.hpp"
@@ -9,6 +11,13 @@
 namespace matpoint {
 
 namespace {
+
+/// getrusage's maximum resident set size of this process (Linux reports KiB), in bytes.
+double peak_resident_bytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+  return 1024.0 * static_cast<double>(usage.ru_maxrss);
+}
 
 /// The input's name of a check kind (checks[].kind; docs/verification.md counts each kind apart).
 const char* check_kind_name(CheckKind kind) {
@@ -127,6 +136,11 @@ nlohmann::json run_summary(const Spec& spec, const RunOptions& options, const Ru
   const double particle_steps = static_cast<double>(f.particles) * static_cast<double>(f.steps);
   s["particle_steps_per_second"] = f.step_wall > 0 ? particle_steps / f.step_wall : 0.0;
   s["particle_steps_per_cpu_second"] = f.step_cpu > 0 ? particle_steps / f.step_cpu : 0.0;
+  // The process's peak resident memory so far (this rank's in a decomposed run), and per particle.
+  const double peak = peak_resident_bytes();
+  s["peak_memory_bytes"] = peak;
+  if (!f.parallel)
+    s["memory_bytes_per_particle"] = f.particles > 0 ? peak / static_cast<double>(f.particles) : 0.0;
   if (f.parallel) s["parallel"] = *f.parallel;  // a decomposed run (parallel/parallel_summary.hpp)
   add_solver_statistics(f, s);
   s["outputs"] = f.outputs;

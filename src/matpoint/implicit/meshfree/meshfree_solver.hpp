@@ -6,6 +6,13 @@
 // this adapter adds what implicit_run_common.hpp shares with the MPMs (step cutting, gravity, the
 // history columns, the totals) and:
 //   - fixed and slip conditions on the body's nodes of the named boundaries, held at du = 0;
+//   - walls: a condition whose boundary is a flat face of the mesh's hull (a structured mesh's sides,
+//     a flat Gmsh group on the hull) holds the whole plane, as the MPMs' grid does. The mesh is gone,
+//     so a node that reaches the plane (at a step's start, at or beyond it) takes the condition from
+//     then on (fixed: sticks; slip: slides along it). Without this, soil that runs out past the
+//     column's footprint (where the mesh had floor nodes but the body none) fell through the floor
+//     (examples/soil-column-collapse/gmm-mls.json: points 0.39 m below it at t = 0.9 s). A node that
+//     crosses the plane within a step is held where the step left it (at most |v| dt beyond);
 //   - the initial nodal velocity and acceleration by consistent-mass projections of the particles'
 //     velocity and of the body force (initial_acceleration "body_force": M a^0 = f_ext - f_int;
 //     "zero": a^0 = 0, the MPMs' default);
@@ -19,6 +26,8 @@
 //     particles), their number and mass counted; the energy they carried leaves the balance as a loss.
 #pragma once
 
+#include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -84,6 +93,8 @@ class MeshfreeSolver {
   [[nodiscard]] const Simulation<D>& sim() const { return sim_; }
   [[nodiscard]] const MeshfreeBody<D>& body() const { return body_; }
   [[nodiscard]] const ImplicitTotals& totals() const { return totals_; }
+  /// Nodes that reached a wall and took its condition so far (see the top of this file).
+  [[nodiscard]] std::int64_t nodes_held_by_walls() const { return wall_nodes_; }
   [[nodiscard]] MeshfreeRepairCounts repairs() const {
     MeshfreeRepairCounts r = restored_repairs_;
     return r += stepper_.repairs();
@@ -94,6 +105,8 @@ class MeshfreeSolver {
   /// An output time one to two steps away is reached in two equal steps, never a full step and a
   /// tiny one (run/run_loop.hpp steps_to_land).
   static constexpr bool kEvenStepsToLand = true;
+  /// The energy guard after every step (run/energy_guard.hpp): a step costs a Newton solve.
+  static constexpr bool kCheckEnergyEveryStep = true;
 
   [[nodiscard]] double time_step() const { return step_size_.next(sim_.time); }
 
@@ -106,6 +119,7 @@ class MeshfreeSolver {
       const std::vector<Vec<D>> nodes_before = body_.node_x;
       const double assembly_before = stepper_.assembly_seconds();
       if (spec_.solver.implicit.meshfree.delete_failed_points) delete_failed_points();
+      hold_nodes_on_walls();
       result = stepper_.step(body_, sub, gravity);
       totals_.assembly_seconds += stepper_.assembly_seconds() - assembly_before;
       marks_.newton_residual = result.final_residual_norm;
@@ -150,6 +164,9 @@ class MeshfreeSolver {
     c.solver_state["meshfree_probes"] = std::move(probes);
     c.solver_state["meshfree_deleted_and_idle"] = {static_cast<double>(deleted_points_), deleted_mass_,
                                                    static_cast<double>(r.idle_nodes)};
+    std::vector<double> point_a;  // the next step projects it to the nodes (MeshfreeStepper)
+    for (const auto& a : body_.point_a) point_a.insert(point_a.end(), a.data(), a.data() + D);
+    c.solver_state["meshfree_point_accelerations"] = std::move(point_a);
     save_run_totals(c, totals_, marks_, step_size_);
   }
   /// Throws InputError when the checkpoint is not a meshfree run's of this body.
@@ -176,6 +193,16 @@ class MeshfreeSolver {
       for (int a = 0; a < D; ++a) probe_u_[k][a] = u[k * D + static_cast<std::size_t>(a)];
     restore_run_totals(c, totals_, marks_, step_size_, expected);
     from_particles();
+    body_.point_a.clear();
+    if (const auto it = c.solver_state.find("meshfree_point_accelerations"); it != c.solver_state.end()) {
+      const std::size_t points = body_.point_x.size();
+      const bool none = it->second.empty();  // a checkpoint written before the first step
+      const auto& a =
+          none ? it->second : checkpoint_array(c, "meshfree_point_accelerations", points * D, expected);
+      if (!none) body_.point_a.resize(points);
+      for (std::size_t p = 0; p < body_.point_a.size(); ++p)
+        for (int k = 0; k < D; ++k) body_.point_a[p][k] = a[p * D + static_cast<std::size_t>(k)];
+    }  // absent: a checkpoint from before the projection existed (the nodes' own history goes on)
     previous_x_ = sim_.particles.x;
   }
 
@@ -217,6 +244,7 @@ class MeshfreeSolver {
                     {"lme_nodes_added", r.lme_nodes_added},
                     {"failed", r.failed},
                     {"idle_nodes", r.idle_nodes},
+                    {"nodes_held_by_walls", wall_nodes_},
                     {"points_deleted", deleted_points_},
                     {"mass_deleted", deleted_mass_}};
     s["meshfree"] = std::move(m);
@@ -260,21 +288,73 @@ class MeshfreeSolver {
     body_.fixed.assign(body_.node_x.size() * D, 0);
     for (std::size_t k = 0; k < spec_.conditions.size(); ++k) {
       const VelocityConditionSpec& c = spec_.conditions[k];  // fixed or slip (the reader refuses others)
-      for (Index n : boundary_nodes(mesh, c, k)) {
+      const auto& nodes = boundary_nodes(mesh, c, k);
+      for (Index n : nodes) {
         const Index I = body_node[static_cast<std::size_t>(n)];
         if (I < 0) continue;  // not under the body
-        for (int a = 0; a < D; ++a)
-          if (c.kind == ConditionKind::Fixed || a == c.normal_axis)
-            body_.fixed[static_cast<std::size_t>(I * D + a)] = 1;
+        hold_node(static_cast<std::size_t>(I), c);
+      }
+      if (auto wall = hull_plane(mesh, nodes)) {
+        wall->condition = k;
+        walls_.push_back(*wall);
       }
     }
     from_particles();
   }
 
+  void hold_node(std::size_t I, const VelocityConditionSpec& c) {
+    for (int a = 0; a < D; ++a)
+      if (c.kind == ConditionKind::Fixed || a == c.normal_axis)
+        body_.fixed[I * D + static_cast<std::size_t>(a)] = 1;
+  }
+
+  /// A plane of the mesh's hull that holds a boundary's nodes: x_axis = position, the mesh on the
+  /// side `inward` (+1: larger coordinates) of it.
+  struct Wall {
+    int axis = 0;
+    double position = 0.0;
+    double inward = 1.0;
+    std::size_t condition = 0;
+  };
+  /// The wall of a boundary whose nodes all lie on one face of the mesh's bounding box, if any.
+  static std::optional<Wall> hull_plane(const mesh::Mesh<D>& mesh, const std::vector<Index>& nodes) {
+    if (nodes.empty()) return std::nullopt;
+    Vec<D> lo = mesh.nodes.front(), hi = lo;
+    for (const auto& x : mesh.nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    for (int a = 0; a < D; ++a) {
+      const double tol = 1e-9 * (hi[a] - lo[a]);
+      for (const double side : {-1.0, 1.0}) {
+        const double plane = side < 0 ? lo[a] : hi[a];
+        bool flat = true;
+        for (Index n : nodes)
+          flat = flat && std::abs(mesh.nodes[static_cast<std::size_t>(n)][a] - plane) <= tol;
+        if (flat) return Wall{a, plane, -side, 0};
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// Walls (see the top of this file): the nodes at or beyond a wall's plane take its condition.
+  void hold_nodes_on_walls() {
+    for (const Wall& w : walls_) {
+      const VelocityConditionSpec& c = spec_.conditions[w.condition];
+      for (std::size_t I = 0; I < body_.node_x.size(); ++I) {
+        if ((body_.node_x[I][w.axis] - w.position) * w.inward > 0.0) continue;  // inside the mesh
+        bool held = true;
+        for (int a = 0; a < D; ++a)
+          if (c.kind == ConditionKind::Fixed || a == c.normal_axis)
+            held = held && body_.fixed[I * D + static_cast<std::size_t>(a)] != 0;
+        if (held) continue;
+        hold_node(I, c);
+        ++wall_nodes_;
+      }
+    }
+  }
+
   /// The deletion repair (see the top of this file), before a step's Newton solve.
   void delete_failed_points() {
-    const std::vector<char> gone = stepper_.points_without_functions(body_);
-    if (gone.empty()) return;
+    std::vector<char> gone;
+    if (stepper_.flag_points_without_functions(body_, gone) == 0) return;
     for (std::size_t p = 0; p < gone.size(); ++p)
       if (gone[p]) ++deleted_points_, deleted_mass_ += body_.point_mass[p];
     body_.remove_points(gone);
@@ -342,6 +422,11 @@ class MeshfreeSolver {
     what << "Newton did not converge (" << result.message << ") with dt = " << sub << " after " << cuts
          << " step cut(s); residual norms:";
     for (const auto& it : result.history) what << ' ' << it.residual_norm;
+    if (const Index p = stepper_.non_finite_point(); p >= 0) {
+      const auto q = static_cast<std::size_t>(p);
+      what << "; the first non-finite residual was particle " << sim_.particles.id[q] << "'s (x = ("
+           << body_.point_x[q].transpose() << "), det F = " << body_.point_F[q].determinant() << ")";
+    }
     throw NumericalFailure(sim_.step + 1, sim_.time, "Newton iteration", what.str());
   }
 
@@ -354,7 +439,9 @@ class MeshfreeSolver {
   ImplicitTotals totals_;
   HistoryMarks marks_;
   MeshfreeRepairCounts restored_repairs_;  // of the sessions before a restart
-  std::int64_t deleted_points_ = 0;        // delete_failed_points: points deleted so far, and their mass
+  std::vector<Wall> walls_;
+  std::int64_t wall_nodes_ = 0;      // nodes that reached a wall and took its condition
+  std::int64_t deleted_points_ = 0;  // delete_failed_points: points deleted so far, and their mass
   double deleted_mass_ = 0.0;
   std::vector<std::size_t> probe_nodes_;  // output.node_probes: body nodes
   std::vector<Vec<D>> probe_u_;

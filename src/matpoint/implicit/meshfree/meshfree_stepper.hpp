@@ -16,6 +16,15 @@
 // (the multipliers hold the field at them, not their coefficients), and a fixed node's cloud became
 // degenerate. Moving nodes with the field keeps them where the material is, fixed nodes fixed, and is
 // the same motion for a translation (partition of unity) or any field that LME or MLS reproduces.
+// Node history (our repair, MeshfreeStepOptions::project_history, on by default): once nodes move
+// with the field, the coefficients' v_I and a_I describe, on the moved nodes' new functions, a
+// velocity field that is no longer the one the step ended with, and every step injects that
+// difference. In the MLS column the energy balance then crept up from t = 0.88 s and a cluster of
+// points near the slope's crest reached 20 m/s within four steps (t = 0.92 s), at dt = 2e-3 s and
+// 1e-3 s alike. So each step starts from v_I, a_I projected from the points' v_p, a_p (the field
+// at each point at the end of the previous step) by the consistent mass, as project_to_nodes does
+// at the start: the velocity field is the material's, and an L2 projection does not add kinetic
+// energy. It costs one more factorisation per step (of the mass matrix, on Newton's pattern).
 // Dirichlet conditions (du = 0 on the flagged dofs of the nodes): MLS has no Kronecker-delta
 // property, so fixing a node's dofs does not make the field vanish there; with `multipliers` (the
 // authors' choice, extraction A14) the field itself is held, sum_J N_J(x_d) du_J,i = 0 at each
@@ -31,6 +40,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <span>
 #include <vector>
@@ -56,8 +66,9 @@ struct MeshfreeBody {
   std::vector<int> point_material;  // index into the stepper's materials (empty: all 0)
   std::vector<double> point_state;  // material history, state_stride values per point
   int state_stride = 0;
-  // Written by each converged step: v_p = sum_I N_I(x_p^n) v_I, the Cauchy stress (and sigma_zz in 2-D).
-  std::vector<Vec<D>> point_v;
+  // Written by each converged step: v_p = sum_I N_I(x_p^n) v_I, a_p likewise (empty before the first
+  // step), the Cauchy stress (and sigma_zz in 2-D).
+  std::vector<Vec<D>> point_v, point_a;
   std::vector<Mat<D>> point_stress;
   std::vector<double> point_stress_zz;
 
@@ -65,6 +76,7 @@ struct MeshfreeBody {
   /// Drops the points that `gone` flags (one flag per point), keeping the others' order.
   void remove_points(const std::vector<char>& gone) {
     for (auto* a : {&point_x, &point_v}) keep_unflagged(*a, gone, 1);
+    if (!point_a.empty()) keep_unflagged(point_a, gone, 1);
     for (auto* a : {&point_mass, &point_volume0, &point_stress_zz}) keep_unflagged(*a, gone, 1);
     for (auto* a : {&point_F, &point_stress}) keep_unflagged(*a, gone, 1);
     keep_unflagged(point_material, gone, 1);
@@ -86,6 +98,9 @@ struct MeshfreeStepOptions {
   bool multipliers = true;               // Dirichlet conditions on the field (see above) or on nodal values
   NewtonOptions newton{};
   LinearSolverOptions linear{};
+  /// Each step starts from the nodes' v and a projected from the points' (our repair, see the top
+  /// of this file); false: the nodes carry their own history, as the paper's Algorithm 2 does.
+  bool project_history = true;
 };
 
 /// A node whose consistent-mass diagonal sum_p m_p N_I(x_p)^2 is below this fraction of the largest
@@ -112,6 +127,11 @@ class MeshfreeStepper {
   NewtonResult step(MeshfreeBody<D>& body, double dt, const Vec<D>& b) {
     NewtonResult result;
     if (!prepare(body, result)) return result;
+    if (!project_history(body)) {
+      result.status = NewtonStatus::LinearSolveFailed;
+      result.message = "the projection of the points' velocities and accelerations to the nodes failed";
+      return result;
+    }
     const auto point_data = step_data(body, dt, b);
     const auto points = static_cast<Index>(stencils_.size());
     AssembleFunction assemble = [&](const Eigen::VectorXd& u, Eigen::VectorXd& R, SparseMatrix* K) {
@@ -124,6 +144,8 @@ class MeshfreeStepper {
               const auto q = static_cast<std::size_t>(p);
               meshfree_point_residual<D>(
                   point_data[q], materials_[static_cast<std::size_t>(body.material(q))], local.data(), r, k);
+              if (k != nullptr && !std::all_of(r, r + dofs.size(), [](double x) { return std::isfinite(x); }))
+                note_non_finite_point(p);  // a Newton iterate's (a line-search trial may be non-finite)
             } else {
               constraint_residual(p - points, local.data(), r, k);
             }
@@ -133,7 +155,11 @@ class MeshfreeStepper {
       return R.allFinite();
     };
     Eigen::VectorXd du = Eigen::VectorXd::Zero(body.dofs() + multiplier_dofs());
+    non_finite_point_ = -1;
     result = newton_solve(assemble, assembly_.pattern_version(), *solver_, du, options_.newton);
+    if (!result.converged() && non_finite_point_ >= 0 && result.message == "assembly failed")
+      result.message = "non-finite residual of a point " +
+                       std::string(result.history.empty() ? "at the step's start" : "at a Newton iterate");
     if (result.converged()) advance(body, du, dt);
     last_increment_ = du.head(body.dofs());
     return result;
@@ -148,38 +174,28 @@ class MeshfreeStepper {
   bool project_to_nodes(const MeshfreeBody<D>& body, const std::vector<Vec<D>>& y, bool internal_force,
                         std::vector<Vec<D>>& X) {
     NewtonResult result;
-    if (!prepare(body, result)) return false;
-    const auto points = static_cast<Index>(stencils_.size());
-    Eigen::VectorXd R;
-    SparseMatrix K = assembly_.pattern();
-    assembly_.assemble(
-        [&](Index p, std::span<const Index> dofs, double* r, double* k) {
-          std::vector<double> zero(dofs.size(), 0.0);
-          if (p < points)
-            mass_residual(body, static_cast<std::size_t>(p), y[static_cast<std::size_t>(p)], internal_force,
-                          r, k);
-          else
-            constraint_residual(p - points, zero.data(), r, k);
-        },
-        R, &K);
-    Eigen::VectorXd x;
-    if (!R.allFinite() || !solver_->factorize(K, assembly_.pattern_version()) || !solver_->solve(-R, x) ||
-        !x.allFinite())
-      return false;
-    X.resize(body.node_x.size());
-    for (std::size_t I = 0; I < X.size(); ++I) X[I] = x.segment<D>(static_cast<Index>(I) * D);
-    return true;
+    return prepare(body, result) && project_prepared(body, y, internal_force, X, /*factorize=*/true);
   }
 
-  /// Flags (one per point) the points that have no usable shape functions at the body's present
-  /// positions, as step() would find them; none flagged: an empty vector.
-  std::vector<char> points_without_functions(const MeshfreeBody<D>& body) {
+  /// The nodes' v and a as the consistent-mass projections of the points' v_p and a_p at the
+  /// present positions (what each step starts with, see the top of this file); false when it failed.
+  bool project_point_history(MeshfreeBody<D>& body) {
+    NewtonResult result;
+    return prepare(body, result) && project_prepared(body, body.point_v, false, body.node_v, true) &&
+           project_prepared(body, body.point_a, false, body.node_a, false);
+  }
+
+  /// Flags in `gone` (one flag per point) the points that have no usable shape functions at the
+  /// body's present positions, as step() would find them; returns how many.
+  std::size_t flag_points_without_functions(const MeshfreeBody<D>& body, std::vector<char>& gone) {
     build_meshfree_stencils<D>(body.point_x, body.node_x, options_.shape, stencils_);
-    if (stencils_.repairs.failed == 0) return {};
-    std::vector<char> gone(stencils_.size(), 0);
-    for (std::size_t p = 0; p < gone.size(); ++p)
+    gone.assign(stencils_.size(), 0);
+    std::size_t count = 0;
+    for (std::size_t p = 0; p < gone.size(); ++p) {
       gone[p] = stencils_.status[p] != MeshfreeStatus::Ok && stencils_.status[p] != MeshfreeStatus::Shepard;
-    return gone;
+      count += gone[p] != 0;
+    }
+    return count;
   }
 
   [[nodiscard]] const MeshfreeRepairCounts& repairs() const { return repairs_; }
@@ -189,8 +205,16 @@ class MeshfreeStepper {
   [[nodiscard]] int colours() const { return assembly_.colour_count(); }
   [[nodiscard]] const MeshfreeStencils<D>& stencils() const { return stencils_; }
   [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
+  /// The smallest point index whose residual was not finite at a Newton iterate of the last step
+  /// (line-search trials aside), or -1.
+  [[nodiscard]] Index non_finite_point() const { return non_finite_point_; }
 
  private:
+  void note_non_finite_point(Index p) {
+#pragma omp critical(matpoint_meshfree_non_finite)
+    if (non_finite_point_ < 0 || p < non_finite_point_) non_finite_point_ = p;
+  }
+
   /// The step's clouds, constraints and assembly blocks at the present positions; false (with the
   /// reason in result) when a point or a constraint has no usable shape functions.
   bool prepare(const MeshfreeBody<D>& body, NewtonResult& result) {
@@ -218,8 +242,43 @@ class MeshfreeStepper {
     return true;
   }
 
+  /// project_to_nodes on the clouds of the last prepare(); `factorize` false: the consistent mass
+  /// factorised by the previous call on the same clouds is reused.
+  bool project_prepared(const MeshfreeBody<D>& body, const std::vector<Vec<D>>& y, bool internal_force,
+                        std::vector<Vec<D>>& X, bool factorize) {
+    const auto points = static_cast<Index>(stencils_.size());
+    Eigen::VectorXd R;
+    SparseMatrix& K = mass_matrix_;  // kept: the factorisation reads it again in later solves
+    if (factorize) K = assembly_.pattern();
+    assembly_.assemble(
+        [&](Index p, std::span<const Index> dofs, double* r, double* k) {
+          std::vector<double> zero(dofs.size(), 0.0);
+          if (p < points)
+            mass_residual(body, static_cast<std::size_t>(p), y[static_cast<std::size_t>(p)], internal_force,
+                          r, k);
+          else
+            constraint_residual(p - points, zero.data(), r, k);
+        },
+        R, factorize ? &K : nullptr);
+    Eigen::VectorXd x;
+    if (!R.allFinite() || (factorize && !solver_->factorize(K, assembly_.pattern_version())) ||
+        !solver_->solve(-R, x) || !x.allFinite())
+      return false;
+    X.resize(body.node_x.size());
+    for (std::size_t I = 0; I < X.size(); ++I) X[I] = x.segment<D>(static_cast<Index>(I) * D);
+    return true;
+  }
+
+  /// The nodes' v and a as the consistent-mass projections of the points' (see the top of this
+  /// file); nothing before the first step (the points have no acceleration yet).
+  bool project_history(MeshfreeBody<D>& body) {
+    if (!options_.project_history || body.point_a.size() != stencils_.size()) return true;
+    return project_prepared(body, body.point_v, false, body.node_v, true) &&
+           project_prepared(body, body.point_a, false, body.node_a, false);
+  }
+
   /// Point p's block of the consistent-mass projection (project_to_nodes) at X = 0: r_Ii = m_p N_I
-  /// (-y_i) [+ V0 sum_j tau_ij G_Ij], K_IiJj = m_p N_I N_J delta_ij.
+  /// (-y_i) [+ V0 sum_j tau_ij G_Ij], K_IiJj = m_p N_I N_J delta_ij (K null: the residual only).
   void mass_residual(const MeshfreeBody<D>& body, std::size_t p, const Vec<D>& y, bool internal_force,
                      double* r, double* K) const {
     const auto first = static_cast<std::size_t>(stencils_.offset[p]);
@@ -234,8 +293,9 @@ class MeshfreeStepper {
       const Vec<D> f = -mass * NI * y + body.point_volume0[p] * tau * stencils_.dN[first + I];
       for (int i = 0; i < D; ++i) {
         r[I * D + i] = f[i];
-        for (std::size_t J = 0; J < n; ++J)
-          K[(I * D + i) * m + J * D + i] = mass * NI * stencils_.N[first + J];
+        if (K != nullptr)
+          for (std::size_t J = 0; J < n; ++J)
+            K[(I * D + i) * m + J * D + i] = mass * NI * stencils_.N[first + J];
       }
     }
   }
@@ -390,10 +450,14 @@ class MeshfreeStepper {
       body.node_v[I] += dt * ((1.0 - options_.newmark.gamma) * body.node_a[I] + options_.newmark.gamma * a);
       body.node_a[I] = a;
     }
+    body.point_a.resize(points, Vec<D>::Zero());
     for (std::size_t p = 0; p < points; ++p) {  // the points' velocity from the nodes' new one
       body.point_v[p].setZero();
-      for (auto k = stencils_.offset[p]; k < stencils_.offset[p + 1]; ++k)
+      body.point_a[p].setZero();
+      for (auto k = stencils_.offset[p]; k < stencils_.offset[p + 1]; ++k) {
         body.point_v[p] += stencils_.N[k] * body.node_v[static_cast<std::size_t>(stencils_.node[k])];
+        body.point_a[p] += stencils_.N[k] * body.node_a[static_cast<std::size_t>(stencils_.node[k])];
+      }
     }
   }
 
@@ -420,6 +484,7 @@ class MeshfreeStepper {
   MeshfreeStepOptions options_;
   std::unique_ptr<LinearSolver> solver_;
   SparseAssembly assembly_;
+  SparseMatrix mass_matrix_;  // of the projections (project_prepared)
   MeshfreeStencils<D> stencils_, constraint_stencils_;
   std::vector<Index> constrained_;  // nodes with a fixed dof (multipliers on)
   std::vector<char> idle_;          // per node: in no point's cloud this step
@@ -427,6 +492,7 @@ class MeshfreeStepper {
   std::vector<Index> offsets_, block_dofs_;
   Eigen::VectorXd last_increment_;
   double assembly_seconds_ = 0.0;
+  Index non_finite_point_ = -1;
 };
 
 }  // namespace matpoint::implicit
