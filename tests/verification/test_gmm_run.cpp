@@ -78,7 +78,7 @@ TEST_F(GmmRun, CantileverFromTheInputMatchesTheStepperAndBeatsQ4Fem) {
 }
 
 /// A 1 x 0.5 m block (Q4 cells of 0.125 m, 2 x 2 points each) falling freely for 0.1 s in 10 steps.
-Spec free_fall(const char* basis, const char* initial_acceleration) {
+Spec free_fall(const char* basis, const char* initial_acceleration, const char* node_history = "projected") {
   return parse_spec(std::string(R"({
     "mesh": {"element": "q4", "min": [0, 0], "max": [1, 0.5], "cells": [8, 4]},
     "materials": [{"name": "m", "model": "neo_hookean", "density": 1000, "E": 1e6, "nu": 0.3}],
@@ -88,7 +88,7 @@ Spec free_fall(const char* basis, const char* initial_acceleration) {
     "solver": {"type": "implicit_ul", "basis": ")") +
                     basis + R"(", "dt": 0.01, "end_time": 0.1,
                "implicit": {"initial_acceleration": ")" +
-                    initial_acceleration + R"("}},
+                    initial_acceleration + R"("}, "meshfree": {"node_history": ")" + node_history + R"("}},
     "output": {"plots": false}})");
 }
 
@@ -96,25 +96,31 @@ TEST_F(GmmRun, FreeFallIsExactWithTheInitialAccelerationSolve) {
   const mesh::Mesh<2> m = mesh::structured_rectangle(
       mesh::ElementShape::Q4, mesh::AxisSpacing::uniform(0, 1, 8), mesh::AxisSpacing::uniform(0, 0.5, 4));
   for (const char* basis : {"mls", "lme"})
-    for (const char* start : {"body_force", "zero"}) {
-      const Spec spec = free_fall(basis, start);
-      implicit::MeshfreeSolver<2> solver(spec, m);
-      const auto x0 = solver.sim().particles.x;
-      for (int s = 0; s < 10; ++s) solver.step(0.01);
-      const double t = 0.1, g = 9.81;
-      // "zero": a^0 = 0, so the first step's trapezoidal velocity lags g dt / 2, carried to the end:
-      // the position lags g dt^2 / 4 after the first step and g dt^2 / 2 more after each other one.
-      const double dt = 0.01, lag = std::string(start) == "zero" ? g * dt * (t / 2 - dt / 4) : 0.0;
-      double worst = 0.0;
-      for (std::size_t p = 0; p < x0.size(); ++p) {
-        const Vec<2> expected = x0[p] + Vec<2>(0.0, -0.5 * g * t * t + lag);
-        worst = std::max(worst, (solver.sim().particles.x[p] - expected).norm());
-        EXPECT_NEAR(solver.sim().particles.v[p][1], -g * t + (lag > 0 ? g * dt / 2 : 0.0), 1e-9)
-            << basis << start;
+    for (const char* start : {"body_force", "zero"})
+      for (const char* history : {"projected", "carried"}) {  // both reproduce a uniform field
+        const Spec spec = free_fall(basis, start, history);
+        implicit::MeshfreeSolver<2> solver(spec, m);
+        RunFacts facts;
+        solver.add_facts(facts);
+        ASSERT_TRUE(facts.implicit.has_value());
+        EXPECT_EQ((*facts.implicit)["meshfree"]["node_history"], history);
+        const auto x0 = solver.sim().particles.x;
+        for (int s = 0; s < 10; ++s) solver.step(0.01);
+        const double t = 0.1, g = 9.81;
+        // "zero": a^0 = 0, so the first step's trapezoidal velocity lags g dt / 2, carried to the end:
+        // the position lags g dt^2 / 4 after the first step and g dt^2 / 2 more after each other one.
+        const double dt = 0.01, lag = std::string(start) == "zero" ? g * dt * (t / 2 - dt / 4) : 0.0;
+        double worst = 0.0;
+        for (std::size_t p = 0; p < x0.size(); ++p) {
+          const Vec<2> expected = x0[p] + Vec<2>(0.0, -0.5 * g * t * t + lag);
+          worst = std::max(worst, (solver.sim().particles.x[p] - expected).norm());
+          EXPECT_NEAR(solver.sim().particles.v[p][1], -g * t + (lag > 0 ? g * dt / 2 : 0.0), 1e-9)
+              << basis << start << history;
+        }
+        std::printf("GMM-%s free fall, a0 %s, node history %s: largest error %.3g m\n", basis, start, history,
+                    worst);
+        EXPECT_LT(worst, 1e-11) << basis << " " << start << " " << history;
       }
-      std::printf("GMM-%s free fall, a0 %s: largest error %.3g m\n", basis, start, worst);
-      EXPECT_LT(worst, 1e-11) << basis << " " << start;
-    }
 }
 
 // Walls (meshfree_solver.hpp): the mesh is discarded, so the floor's condition held only the

@@ -251,6 +251,7 @@ struct MeshfreeSpec {                         // solver.meshfree, multiples of t
   std::optional<double> spacing;              // h; empty: the mesh's smallest cell size
   bool mls_truncated_weight = false;          // mls_weight "truncated" (the authors' code) or "smooth" (C1 at R)
   bool delete_failed_points = false;          // drop points without usable functions (the authors' code, §6.5)
+  bool carried_node_history = false;          // node_history "carried" (Algorithm 2) or "projected" (ours)
 };
 struct ImplicitSpec {
   double beta = 0.3, gamma = 0.5;  // Newmark, eqs. (17)-(19); the paper's tests use 0.3 / 0.5

@@ -60,6 +60,7 @@ MeshfreeStepOptions meshfree_step_options(const Spec& spec) {
   s.min_nodes = static_cast<std::size_t>(in.meshfree.min_nodes);
   s.lme_max_nodes = static_cast<std::size_t>(in.meshfree.lme_max_nodes);
   s.mls_weight = in.meshfree.mls_truncated_weight ? MlsWeight::Truncated : MlsWeight::Smooth;
+  o.project_history = !in.meshfree.carried_node_history;
   o.newmark = {in.beta, in.gamma};
   o.quasi_static = in.static_analysis;
   o.newton = newton_options(in);
@@ -235,6 +236,7 @@ class MeshfreeSolver {
     m["radius"] = shape.radius();
     if (mls) m["dilation"] = shape.dilation();
     if (mls) m["weight"] = shape.mls_weight == MlsWeight::Smooth ? "smooth" : "truncated";
+    m["node_history"] = options_.project_history ? "projected" : "carried";
     if (!mls) m["gamma"] = shape.gamma;
     m["assembly_colours"] = stepper_.colours();
     const MeshfreeRepairCounts r = repairs();

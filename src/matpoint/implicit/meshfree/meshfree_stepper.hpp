@@ -16,7 +16,8 @@
 // (the multipliers hold the field at them, not their coefficients), and a fixed node's cloud became
 // degenerate. Moving nodes with the field keeps them where the material is, fixed nodes fixed, and is
 // the same motion for a translation (partition of unity) or any field that LME or MLS reproduces.
-// Node history (our repair, MeshfreeStepOptions::project_history, on by default): once nodes move
+// Node history (our repair, MeshfreeStepOptions::project_history, input solver.meshfree.node_history
+// "projected", the default; "carried" is the paper's): once nodes move
 // with the field, the coefficients' v_I and a_I describe, on the moved nodes' new functions, a
 // velocity field that is no longer the one the step ended with, and every step injects that
 // difference. In the MLS column the energy balance then crept up from t = 0.88 s and a cluster of

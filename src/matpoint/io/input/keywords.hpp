@@ -107,6 +107,10 @@ constexpr std::array<Named<bool>, 2> kInitialAccelerations{{{"zero", false}, {"b
 /// solver.meshfree.mls_weight: the Gaussian less its tangent at R (C1, the default) or cut off at R (the
 /// authors' code; shape/meshfree_mls.hpp). The value is "truncated".
 constexpr std::array<Named<bool>, 2> kMlsWeights{{{"smooth", false}, {"truncated", true}}};
+/// solver.meshfree.node_history: each step starts from the nodes' v and a projected from the
+/// particles' (the default, implicit/meshfree/meshfree_stepper.hpp) or carried by the nodes (the
+/// paper's Algorithm 2). The value is "carried".
+constexpr std::array<Named<bool>, 2> kNodeHistories{{{"projected", false}, {"carried", true}}};
 
 /// fe_bodies[].inertia: the physical inertia rho (default) or the authors' code's unit density
 /// (Aulisa & Capodaglio, extraction A2).

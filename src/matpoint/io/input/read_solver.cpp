@@ -479,8 +479,9 @@ namespace matpoint::input_detail {
 void SpecReader::read_implicit_basis(const Object& s) {
   ImplicitSpec& m = spec_.solver.implicit;
   set_if(m.basis, s.optional("basis").choice(kImplicitBases));
-  const Object f(s.optional("meshfree"), {"radius_factor", "dilation_factor", "gamma", "min_nodes",
-                                          "lme_max_nodes", "spacing", "mls_weight", "delete_failed_points"});
+  const Object f(s.optional("meshfree"),
+                 {"radius_factor", "dilation_factor", "gamma", "min_nodes", "lme_max_nodes", "spacing",
+                  "mls_weight", "delete_failed_points", "node_history"});
   if (m.basis == ImplicitBasis::Mesh) {
     if (s.has("meshfree"))
       s.optional("meshfree").fail("no meshfree unless solver.basis is \"mls\" or \"lme\"");
@@ -508,6 +509,7 @@ void SpecReader::read_implicit_basis(const Object& s) {
   if (const auto n = f.optional("lme_max_nodes").integer(0, 1000)) out.lme_max_nodes = static_cast<int>(*n);
   set_if(out.mls_truncated_weight, f.optional("mls_weight").choice(kMlsWeights));
   set_if(out.delete_failed_points, f.optional("delete_failed_points").boolean());
+  set_if(out.carried_node_history, f.optional("node_history").choice(kNodeHistories));
   check_meshfree_conditions(basis);
 }
 
