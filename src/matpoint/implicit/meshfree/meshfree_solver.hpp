@@ -194,16 +194,16 @@ class MeshfreeSolver {
       for (int a = 0; a < D; ++a) probe_u_[k][a] = u[k * D + static_cast<std::size_t>(a)];
     restore_run_totals(c, totals_, marks_, step_size_, expected);
     from_particles();
+    // Empty before the first step; absent in a checkpoint from before the projection existed (the
+    // nodes' own history goes on).
     body_.point_a.clear();
-    if (const auto it = c.solver_state.find("meshfree_point_accelerations"); it != c.solver_state.end()) {
-      const std::size_t points = body_.point_x.size();
-      const bool none = it->second.empty();  // a checkpoint written before the first step
-      const auto& a =
-          none ? it->second : checkpoint_array(c, "meshfree_point_accelerations", points * D, expected);
-      if (!none) body_.point_a.resize(points);
+    const auto it = c.solver_state.find("meshfree_point_accelerations");
+    if (it != c.solver_state.end() && !it->second.empty()) {
+      const auto& a = checkpoint_array(c, "meshfree_point_accelerations", body_.point_x.size() * D, expected);
+      body_.point_a.resize(body_.point_x.size());
       for (std::size_t p = 0; p < body_.point_a.size(); ++p)
         for (int k = 0; k < D; ++k) body_.point_a[p][k] = a[p * D + static_cast<std::size_t>(k)];
-    }  // absent: a checkpoint from before the projection existed (the nodes' own history goes on)
+    }
     previous_x_ = sim_.particles.x;
   }
 
@@ -304,10 +304,16 @@ class MeshfreeSolver {
     from_particles();
   }
 
-  void hold_node(std::size_t I, const VelocityConditionSpec& c) {
+  /// Holds node I's dofs that condition c fixes; true when one of them was free.
+  bool hold_node(std::size_t I, const VelocityConditionSpec& c) {
+    bool newly = false;
     for (int a = 0; a < D; ++a)
-      if (c.kind == ConditionKind::Fixed || a == c.normal_axis)
-        body_.fixed[I * D + static_cast<std::size_t>(a)] = 1;
+      if (c.kind == ConditionKind::Fixed || a == c.normal_axis) {
+        char& held = body_.fixed[I * D + static_cast<std::size_t>(a)];
+        newly = newly || held == 0;
+        held = 1;
+      }
+    return newly;
   }
 
   /// A plane of the mesh's hull that holds a boundary's nodes: x_axis = position, the mesh on the
@@ -342,13 +348,7 @@ class MeshfreeSolver {
       const VelocityConditionSpec& c = spec_.conditions[w.condition];
       for (std::size_t I = 0; I < body_.node_x.size(); ++I) {
         if ((body_.node_x[I][w.axis] - w.position) * w.inward > 0.0) continue;  // inside the mesh
-        bool held = true;
-        for (int a = 0; a < D; ++a)
-          if (c.kind == ConditionKind::Fixed || a == c.normal_axis)
-            held = held && body_.fixed[I * D + static_cast<std::size_t>(a)] != 0;
-        if (held) continue;
-        hold_node(I, c);
-        ++wall_nodes_;
+        if (hold_node(I, c)) ++wall_nodes_;
       }
     }
   }

@@ -158,7 +158,7 @@ class MeshfreeStepper {
     Eigen::VectorXd du = Eigen::VectorXd::Zero(body.dofs() + multiplier_dofs());
     non_finite_point_ = -1;
     result = newton_solve(assemble, assembly_.pattern_version(), *solver_, du, options_.newton);
-    if (!result.converged() && non_finite_point_ >= 0 && result.message == "assembly failed")
+    if (result.status == NewtonStatus::AssemblyFailed && non_finite_point_ >= 0)
       result.message = "non-finite residual of a point " +
                        std::string(result.history.empty() ? "at the step's start" : "at a Newton iterate");
     if (result.converged()) advance(body, du, dt);
@@ -182,8 +182,7 @@ class MeshfreeStepper {
   /// present positions (what each step starts with, see the top of this file); false when it failed.
   bool project_point_history(MeshfreeBody<D>& body) {
     NewtonResult result;
-    return prepare(body, result) && project_prepared(body, body.point_v, false, body.node_v, true) &&
-           project_prepared(body, body.point_a, false, body.node_a, false);
+    return prepare(body, result) && project_point_fields(body);
   }
 
   /// Flags in `gone` (one flag per point) the points that have no usable shape functions at the
@@ -274,8 +273,12 @@ class MeshfreeStepper {
   /// file); nothing before the first step (the points have no acceleration yet).
   bool project_history(MeshfreeBody<D>& body) {
     if (!options_.project_history || body.point_a.size() != stencils_.size()) return true;
-    return project_prepared(body, body.point_v, false, body.node_v, true) &&
-           project_prepared(body, body.point_a, false, body.node_a, false);
+    return project_point_fields(body);
+  }
+  /// v_I and a_I from v_p and a_p on the clouds of the last prepare(), one factorisation for both.
+  bool project_point_fields(MeshfreeBody<D>& body) {
+    return project_prepared(body, body.point_v, false, body.node_v, /*factorize=*/true) &&
+           project_prepared(body, body.point_a, false, body.node_a, /*factorize=*/false);
   }
 
   /// Point p's block of the consistent-mass projection (project_to_nodes) at X = 0: r_Ii = m_p N_I
