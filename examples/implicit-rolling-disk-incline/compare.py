@@ -9,9 +9,9 @@ m), the wall time, and each meshfree run's wall time over the MPM run's beside T
     examples/implicit-rolling-disk-incline/compare.py BUILD/matpoint [INPUT] [--dt 1e-3,5e-4] [--gamma G]
         [--mls-radius F --mls-dilation F]
 
-INPUT: default input.json, the frictionless control (the meshfree body's floor nodes slide with it;
-the one-sided no-slip floor of no-slip.json holds mesh nodes, which the meshfree method has not got:
-docs/input.md). The paper's MLS clouds for this test: --mls-radius 4.2426 --mls-dilation 2.8284
+INPUT: default input.json, the frictionless control (the meshfree body's floor nodes slide with it);
+no-slip.json rolls the disk on the one-sided no-slip floor, which acts on the points' surface feet
+for MPM and the meshfree method alike (docs/input.md). The paper's MLS clouds for this test: --mls-radius 4.2426 --mls-dilation 2.8284
 (R = 1.5 "2h sqrt 2", R_eff = "2h sqrt 2", extraction §6.4). README.md has the last output.
 """
 import json

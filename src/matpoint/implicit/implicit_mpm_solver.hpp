@@ -102,7 +102,8 @@ class ImplicitMpmSolver {
       check_particles_outside(fe);
     }
     auto options = stepper_options<D>(spec);
-    options.one_sided = one_sided_nodes(spec);
+    options.one_sided = one_sided_nodes(mesh_, spec);
+    if (!options.one_sided.empty()) options.body_contains = body_shape_test<D>(spec);
     options.gravity = gravity_at(0.0);
     options.not_fully_active = on_condition;  // A13 (b): boundary nodes count as not fully active
     try {
@@ -127,29 +128,6 @@ class ImplicitMpmSolver {
   [[nodiscard]] const Simulation<D>& sim() const { return sim_; }
   [[nodiscard]] const mesh::Mesh<D>& mesh() const { return mesh_; }
 
-  /// The nodes of the one-sided conditions with their walls; throws InputError for a boundary that
-  /// is not a plane at the mesh's edge (the wall needs the body on one side of it).
-  std::vector<OneSidedNode> one_sided_nodes(const Spec& spec) const {
-    std::vector<OneSidedNode> out;
-    for (std::size_t k = 0; k < spec.conditions.size(); ++k) {
-      const VelocityConditionSpec& c = spec.conditions[k];
-      if (!c.one_sided) continue;
-      const auto& nodes = boundary_nodes(mesh_, c, k);
-      const auto plane = wall_plane<D>(mesh_.nodes, nodes);
-      const std::string path = "boundary_conditions[" + std::to_string(k) + "]";
-      if (!plane)
-        throw InputError({{path + ".one_sided", "true",
-                           "false: boundary \"" + c.boundary +
-                               "\" is not a plane x_i = constant at the mesh's edge (a one-sided wall "
-                               "needs the body on one side)"}});
-      if (c.kind == ConditionKind::Slip && c.normal_axis != plane->axis)
-        throw InputError({{path + ".normal", std::string("\"") + "xyz"[c.normal_axis] + "\"",
-                           std::string("\"") + "xyz"[plane->axis] +
-                               "\", the wall's normal (a one-sided slip wall holds the normal component)"}});
-      for (Index n : nodes) out.push_back({n, *plane, c.kind == ConditionKind::Fixed});
-    }
-    return out;
-  }
   [[nodiscard]] const ImplicitTotals& totals() const { return totals_; }
   /// The FE bodies' state (empty without fe_bodies).
   [[nodiscard]] const fem::FeBodies<E>& fe_bodies_state() const { return stepper_->fe_bodies(); }

@@ -13,10 +13,12 @@
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/implicit/linear_solver.hpp"
 #include "matpoint/implicit/newton.hpp"
+#include "matpoint/implicit/one_sided_boundary.hpp"
 #include "matpoint/implicit/step_size_control.hpp"
 #include "matpoint/io/checkpoint.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/mesh/mesh.hpp"
+#include "matpoint/particles/generators.hpp"
 
 namespace matpoint::implicit {
 
@@ -86,6 +88,42 @@ template <int D>
 const std::vector<Index>& boundary_nodes(const mesh::Mesh<D>& m, const VelocityConditionSpec& c,
                                          std::size_t k) {
   return named_boundary(m.node_sets, c.boundary, "boundary_conditions[" + std::to_string(k) + "].boundary");
+}
+
+/// The nodes of the one-sided conditions with their walls (one_sided_boundary.hpp); throws
+/// InputError for a boundary that is not a plane at the mesh's edge (the wall needs the body on one
+/// side of it).
+template <int D>
+std::vector<OneSidedNode> one_sided_nodes(const mesh::Mesh<D>& mesh, const Spec& spec) {
+  std::vector<OneSidedNode> out;
+  for (std::size_t k = 0; k < spec.conditions.size(); ++k) {
+    const VelocityConditionSpec& c = spec.conditions[k];
+    if (!c.one_sided) continue;
+    const auto& nodes = boundary_nodes(mesh, c, k);
+    const auto plane = wall_plane<D>(mesh.nodes, nodes);
+    const std::string path = "boundary_conditions[" + std::to_string(k) + "]";
+    if (!plane)
+      throw InputError({{path + ".one_sided", "true",
+                         "false: boundary \"" + c.boundary +
+                             "\" is not a plane x_i = constant at the mesh's edge (a one-sided wall "
+                             "needs the body on one side)"}});
+    if (c.kind == ConditionKind::Slip && c.normal_axis != plane->axis)
+      throw InputError({{path + ".normal", std::string("\"") + "xyz"[c.normal_axis] + "\"",
+                         std::string("\"") + "xyz"[plane->axis] +
+                             "\", the wall's normal (a one-sided slip wall holds the normal component)"}});
+    for (Index n : nodes) out.push_back({n, *plane, c.kind == ConditionKind::Fixed});
+  }
+  return out;
+}
+
+/// Whether a reference point lies in body k's shape (bodies[k].shape): where the one-sided walls
+/// find the bodies' surfaces.
+template <int D>
+BodyShapeTest<D> body_shape_test(const Spec& spec) {
+  return [bodies = spec.bodies](int body, const Vec<D>& x) {
+    return body >= 0 && static_cast<std::size_t>(body) < bodies.size() &&
+           shape_contains<D>(bodies[static_cast<std::size_t>(body)], x);
+  };
 }
 
 /// loads.gravity times loads.gravity_scale at time t.

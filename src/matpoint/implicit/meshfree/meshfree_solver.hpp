@@ -13,6 +13,9 @@
 //     column's footprint (where the mesh had floor nodes but the body none) fell through the floor
 //     (examples/soil-column-collapse/gmm-mls.json: points 0.39 m below it at t = 0.9 s). A node that
 //     crosses the plane within a step is held where the step left it (at most |v| dt beyond);
+//   - one_sided conditions: no node is held; the wall acts on the feet of the points near the body's
+//     surface (implicit/one_sided_boundary.hpp, MeshfreeStepper's penalty blocks), so a body can roll
+//     on it or lift off (examples/implicit-rolling-disk-incline);
 //   - the initial nodal velocity and acceleration by consistent-mass projections of the particles'
 //     velocity and of the body force (initial_acceleration "body_force": M a^0 = f_ext - f_int;
 //     "zero": a^0 = 0, the MPMs' default);
@@ -26,7 +29,9 @@
 //     particles), their number and mass counted; the energy they carried leaves the balance as a loss.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -80,6 +85,8 @@ class MeshfreeSolver {
         stepper_(implicit_materials(sim_), options_),
         step_size_(spec.solver) {
     build_body(mesh);
+    one_sided_ = OneSidedBoundary<D>(one_sided_nodes(mesh, spec), 10, body_shape_test<D>(spec));
+    wall_stiffness_ = one_sided_stiffness(mesh);
     previous_x_ = sim_.particles.x;
     std::vector<Vec<D>> nodes(body_.node_x.begin(), body_.node_x.end());
     for (long node : probe_particle_ids<D>(nodes, spec.output.node_probes))
@@ -121,7 +128,12 @@ class MeshfreeSolver {
       const double assembly_before = stepper_.assembly_seconds();
       if (spec_.solver.implicit.meshfree.delete_failed_points) delete_failed_points();
       hold_nodes_on_walls();
-      result = stepper_.step(body_, sub, gravity);
+      OneSidedBoundary<D>* walls = nullptr;
+      if (!one_sided_.empty()) {
+        one_sided_.start_step(sim_.particles, sub);
+        walls = &one_sided_;
+      }
+      result = stepper_.step(body_, sub, gravity, walls, wall_stiffness_);
       totals_.assembly_seconds += stepper_.assembly_seconds() - assembly_before;
       marks_.newton_residual = result.final_residual_norm;
       if (result.converged()) {
@@ -290,6 +302,7 @@ class MeshfreeSolver {
     body_.fixed.assign(body_.node_x.size() * D, 0);
     for (std::size_t k = 0; k < spec_.conditions.size(); ++k) {
       const VelocityConditionSpec& c = spec_.conditions[k];  // fixed or slip (the reader refuses others)
+      if (c.one_sided) continue;  // a wall on the points' feet (one_sided_boundary.hpp), no node held
       const auto& nodes = boundary_nodes(mesh, c, k);
       for (Index n : nodes) {
         const Index I = body_node[static_cast<std::size_t>(n)];
@@ -302,6 +315,21 @@ class MeshfreeSolver {
       }
     }
     from_particles();
+  }
+
+  /// The one-sided walls' penalty, kFootPenalty (lambda + 2 mu)_max L^(D-2) with L the mesh's
+  /// first element's extent (the MPM stepper takes each foot's host element).
+  double one_sided_stiffness(const mesh::Mesh<D>& mesh) const {
+    double modulus = 0.0;
+    for (const ImplicitMaterial& m : implicit_materials(sim_))
+      modulus = std::max(modulus, m.lambda + 2.0 * m.mu);
+    Vec<D> lo = Vec<D>::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    if (mesh.element_count() > 0)
+      for (const Index n : mesh.element_nodes(0))
+        lo = lo.cwiseMin(mesh.nodes[static_cast<std::size_t>(n)]),
+        hi = hi.cwiseMax(mesh.nodes[static_cast<std::size_t>(n)]);
+    const double extent = mesh.element_count() > 0 ? (hi - lo).maxCoeff() : 1.0;
+    return kFootPenalty * modulus * std::pow(extent, D - 2);
   }
 
   /// Holds node I's dofs that condition c fixes; true when one of them was free.
@@ -442,6 +470,8 @@ class MeshfreeSolver {
   HistoryMarks marks_;
   MeshfreeRepairCounts restored_repairs_;  // of the sessions before a restart
   std::vector<Wall> walls_;
+  OneSidedBoundary<D> one_sided_;  // one_sided conditions: walls on the points' feet
+  double wall_stiffness_ = 0.0;
   std::int64_t wall_nodes_ = 0;      // nodes that reached a wall and took its condition
   std::int64_t deleted_points_ = 0;  // delete_failed_points: points deleted so far, and their mass
   double deleted_mass_ = 0.0;

@@ -32,6 +32,10 @@
 // fixed node's position x_d, by one Lagrange multiplier per fixed dof. LME interpolates on the
 // hull boundary (weak Kronecker delta), so fixing every node of a boundary face is exact there and
 // `multipliers` can be off.
+// One-sided walls (implicit/one_sided_boundary.hpp): the feet of the points near the body's surface
+// that reach a wall are held by penalty blocks on the point's cloud, u(x_f) = sum_J W_J du_J with
+// W_J = N_J(x_p) + grad N_J(x_p) . (x_f - x_p) (the foot moves with its point), and the step is
+// solved again while the contact set changes, as in the MPM stepper; the walls hold no node.
 // After a converged step every point also gets its velocity v_p = sum_I N_I(x_p^n) v_I^{n+1} (for the
 // writers and the energies: the nodes carry the history) and its Cauchy stress from the material's
 // converged update, which advances the plastic state (implicit_material.hpp). The initial nodal
@@ -49,6 +53,7 @@
 #include "matpoint/implicit/linear_solver.hpp"
 #include "matpoint/implicit/meshfree/point_residual.hpp"
 #include "matpoint/implicit/newton.hpp"
+#include "matpoint/implicit/one_sided_boundary.hpp"
 #include "matpoint/implicit/particle_newmark/particle_quadrature.hpp"
 #include "matpoint/implicit/sparse_assembly.hpp"
 #include "matpoint/particles/remove_particles.hpp"
@@ -125,7 +130,10 @@ class MeshfreeStepper {
 
   /// Advances body by dt under the body force b; returns Newton's result (the body is unchanged
   /// unless it converged). A point without usable shape functions fails the step.
-  NewtonResult step(MeshfreeBody<D>& body, double dt, const Vec<D>& b) {
+  /// `walls` (optional): the one-sided walls, their candidates found on the body's step-start points
+  /// (OneSidedBoundary::start_step), with the penalty stiffness `wall_stiffness`.
+  NewtonResult step(MeshfreeBody<D>& body, double dt, const Vec<D>& b, OneSidedBoundary<D>* walls = nullptr,
+                    double wall_stiffness = 0.0) {
     NewtonResult result;
     if (!prepare(body, result)) return result;
     if (!project_history(body)) {
@@ -147,17 +155,36 @@ class MeshfreeStepper {
                   point_data[q], materials_[static_cast<std::size_t>(body.material(q))], local.data(), r, k);
               if (k != nullptr && !std::all_of(r, r + dofs.size(), [](double x) { return std::isfinite(x); }))
                 note_non_finite_point(p);  // a Newton iterate's (a line-search trial may be non-finite)
-            } else {
+            } else if (p < points + static_cast<Index>(constrained_.size())) {
               constraint_residual(p - points, local.data(), r, k);
+            } else {
+              foot_residual(feet_[static_cast<std::size_t>(p - points) - constrained_.size()], local.data(),
+                            r, k);
             }
           },
           R, K);
       assembly_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       return R.allFinite();
     };
-    Eigen::VectorXd du = Eigen::VectorXd::Zero(body.dofs() + multiplier_dofs());
-    non_finite_point_ = -1;
-    result = newton_solve(assemble, assembly_.pattern_version(), *solver_, du, options_.newton);
+    Eigen::VectorXd du;
+    if (walls != nullptr) candidate_feet(*walls, body, wall_stiffness);
+    for (int solves = 1;; ++solves) {  // one solve, or one per change of the walls' contact set
+      if (walls != nullptr) {
+        feet_.clear();
+        for (std::size_t c = 0; c < candidates_.size(); ++c)
+          if (walls->in_contact()[c] != 0) feet_.push_back(candidates_[c]);
+        if (!feet_.empty() || solves > 1) build_blocks(body);  // prepare() built them without feet
+      }
+      du = Eigen::VectorXd::Zero(body.dofs() + multiplier_dofs());
+      non_finite_point_ = -1;
+      result = newton_solve(assemble, assembly_.pattern_version(), *solver_, du, options_.newton);
+      if (walls == nullptr || !result.converged() || solves >= walls->max_rounds()) break;
+      std::vector<double> inward(candidates_.size());
+      for (std::size_t c = 0; c < candidates_.size(); ++c)
+        inward[c] =
+            -candidates_[c].outward * foot_displacement(candidates_[c], du, candidates_[c].normal_axis);
+      if (!walls->update(inward)) break;
+    }
     if (result.status == NewtonStatus::AssemblyFailed && non_finite_point_ >= 0)
       result.message = "non-finite residual of a point " +
                        std::string(result.history.empty() ? "at the step's start" : "at a Newton iterate");
@@ -234,6 +261,7 @@ class MeshfreeStepper {
       return false;
     }
     find_idle_nodes(body);
+    feet_.clear();  // the walls' feet join the blocks in step() only
     if (!build_constraints(body)) {
       result.message = "meshfree shape functions failed at a Dirichlet node";
       return false;
@@ -376,10 +404,61 @@ class MeshfreeStepper {
     } else {
       std::copy(body.fixed.begin(), body.fixed.end(), dirichlet.begin());
     }
+    for (const MeshfreeFoot& foot : feet_) {  // a foot in contact: its point's cloud
+      add_cloud(stencils_, foot.point);
+      offsets_.push_back(static_cast<Index>(block_dofs_.size()));
+    }
     for (std::size_t I = 0; I < idle_.size(); ++I)
       if (idle_[I])
         for (int i = 0; i < D; ++i) dirichlet[I * D + static_cast<std::size_t>(i)] = 1;
     assembly_.build(body.dofs() + multiplier_dofs(), offsets_, block_dofs_, dirichlet);
+  }
+
+  /// A one-sided wall's candidate foot on point p's cloud: u(x_f) = sum_J W_J du_J.
+  struct MeshfreeFoot {
+    std::size_t point = 0;
+    std::vector<double> W;
+    int normal_axis = 0;
+    double outward = -1.0, gap = 0.0, stiffness = 0.0;
+    bool no_slip = true;
+  };
+
+  /// The walls' candidates as feet on their points' clouds (see the top of this file).
+  void candidate_feet(const OneSidedBoundary<D>& walls, const MeshfreeBody<D>& body, double stiffness) {
+    candidates_.clear();
+    for (const WallContact<D>& c : walls.candidates()) {
+      MeshfreeFoot foot{c.particle, {}, c.plane.axis, c.plane.outward, c.gap, stiffness, c.no_slip};
+      const Vec<D> offset = c.foot - body.point_x[c.particle];
+      for (auto k = stencils_.offset[c.particle]; k < stencils_.offset[c.particle + 1]; ++k)
+        foot.W.push_back(stencils_.N[k] + stencils_.dN[k].dot(offset));
+      candidates_.push_back(std::move(foot));
+    }
+  }
+  /// Component i of a foot's displacement over the step.
+  double foot_displacement(const MeshfreeFoot& foot, const Eigen::VectorXd& du, int i) const {
+    double s = 0.0;
+    std::size_t J = 0;
+    for (auto k = stencils_.offset[foot.point]; k < stencils_.offset[foot.point + 1]; ++k, ++J)
+      s += foot.W[J] * du[static_cast<Index>(stencils_.node[k]) * D + i];
+    return s;
+  }
+  /// A foot's penalty block on its point's cloud (dofs node-major), as the MPM stepper's
+  /// (ParticleNewmarkSystem::add_foot): per held component i, r_(J,i) = k W_J (s_i + offset_i).
+  static void foot_residual(const MeshfreeFoot& foot, const double* u, double* r, double* K) {
+    const std::size_t n = foot.W.size(), m = n * D;
+    for (int i = 0; i < D; ++i) {
+      const bool normal = i == foot.normal_axis;
+      if (!normal && !foot.no_slip) continue;
+      double s = normal ? -foot.outward * foot.gap : 0.0;
+      for (std::size_t J = 0; J < n; ++J) s += foot.W[J] * u[J * D + static_cast<std::size_t>(i)];
+      for (std::size_t J = 0; J < n; ++J) {
+        const std::size_t row = J * D + static_cast<std::size_t>(i);
+        r[row] += foot.stiffness * foot.W[J] * s;
+        if (K != nullptr)
+          for (std::size_t L = 0; L < n; ++L)
+            K[row * m + L * D + static_cast<std::size_t>(i)] += foot.stiffness * foot.W[J] * foot.W[L];
+      }
+    }
   }
 
   /// Constraint c with multipliers l_i (the last D local dofs): r_Ji += l_i N_J, r_li = sum_J N_J du_Ji.
@@ -494,6 +573,7 @@ class MeshfreeStepper {
   std::vector<char> idle_;          // per node: in no point's cloud this step
   MeshfreeRepairCounts repairs_;
   std::vector<Index> offsets_, block_dofs_;
+  std::vector<MeshfreeFoot> candidates_, feet_;  // the walls' candidate feet; those in contact (blocks)
   Eigen::VectorXd last_increment_;
   double assembly_seconds_ = 0.0;
   Index non_finite_point_ = -1;

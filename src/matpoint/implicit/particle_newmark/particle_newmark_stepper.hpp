@@ -5,10 +5,10 @@
 //     (beta dt) - (1 - 2 beta) / (2 beta) a_p^n at each particle (eq. (21)); after the step the
 //     particle's own a_p, v_p follow eqs. (19), (17);
 //   - Iaconeta 2017's updated-Lagrangian MPM (§4.1, Algorithm 1): the particles' momentum and
-//     m a are projected to the nodes (eqs. (38)-(41); nodal_projection.hpp), Newmark's predictor acts on the nodal
-//     v~_I, a~_I (eqs. (43), (44)), so the particle sees a_p = sum_I N_I a_I; after the step
-//     a_p^{n+1} = sum_I N_I a_I^{n+1} (47) and v_p^{n+1} = v_p^n + dt ((1 - gamma) a_p^n +
-//     gamma a_p^{n+1}) (48, the trapezoidal rule for gamma = 1/2);
+//     m a are projected to the nodes (eqs. (38)-(41); nodal_projection.hpp), Newmark's predictor acts on the
+//     nodal v~_I, a~_I (eqs. (43), (44)), so the particle sees a_p = sum_I N_I a_I; after the step a_p^{n+1}
+//     = sum_I N_I a_I^{n+1} (47) and v_p^{n+1} = v_p^n + dt ((1 - gamma) a_p^n + gamma a_p^{n+1}) (48, the
+//     trapezoidal rule for gamma = 1/2);
 //   - either with `static_analysis`: no inertia, equilibrium under the step's load (Iaconeta §4.1.1,
 //     the static cantilever of §5.1).
 // The steps:
@@ -26,6 +26,8 @@
 #pragma once
 
 #include <chrono>
+#include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -38,8 +40,8 @@
 #include "matpoint/implicit/linear_solver.hpp"
 #include "matpoint/implicit/newton.hpp"
 #include "matpoint/implicit/one_sided_boundary.hpp"
-#include "matpoint/implicit/particle_newmark/nodal_projection.hpp"
 #include "matpoint/implicit/particle_newmark/element_flags.hpp"
+#include "matpoint/implicit/particle_newmark/nodal_projection.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_system.hpp"
 #include "matpoint/mesh/point_locator.hpp"
 #include "matpoint/particles/particle_set.hpp"
@@ -75,7 +77,10 @@ struct ParticleNewmarkOptions {
   NewtonOptions newton;
   LinearSolverOptions linear;
   std::vector<OneSidedNode> one_sided;  // nodes of one-sided boundaries (one_sided_boundary.hpp)
-  int max_one_sided_rounds = 10;        // Newton solves per step while the held set changes
+  /// (body index, reference point) -> inside the body's shape: where the one-sided walls find the
+  /// bodies' surfaces (empty: the particles' domains stand for them)
+  std::function<bool(int, const Vec<D>&)> body_contains;
+  int max_one_sided_rounds = 10;  // Newton solves per step while the held set changes
 };
 
 struct StepReport {
@@ -114,9 +119,13 @@ class ParticleNewmarkStepper {
         reference_(mesh.nodes),
         locator_(mesh, mesh.nodes),
         solver_(make_linear_solver(options_.linear)),
-        one_sided_(std::move(options_.one_sided), options_.max_one_sided_rounds),
+        one_sided_(options_.one_sided, options_.max_one_sided_rounds, options_.body_contains),
         fe_(std::move(fe_bodies)) {
     options_.newton.components = D;
+    // A one-sided wall's nodes are free: the wall acts on the particles' feet (one_sided_boundary.hpp).
+    for (const OneSidedNode& n : options_.one_sided)
+      for (int a = 0; a < D; ++a)
+        if (n.all_components || a == n.plane.axis) dirichlet_[static_cast<std::size_t>(n.node * D + a)] = 0;
     if (fe_.empty()) return;
     if (options_.initial_acceleration_from_body_force) fe_.start_from_body_force(mesh_, options_.gravity);
     locator_.exclude(fe_.element_mask());
@@ -183,18 +192,68 @@ class ParticleNewmarkStepper {
     FaceVelocities<E> out = walls_at_rest<E>();
     if constexpr (D == 2) {
       const auto nodes = mesh_.element_nodes(e);
-      const auto node = [&](int local) { return static_cast<std::size_t>(nodes[static_cast<std::size_t>(local)]); };
+      const auto node = [&](int local) {
+        return static_cast<std::size_t>(nodes[static_cast<std::size_t>(local)]);
+      };
       for (int f = 0; f < E::kFaces; ++f) {
         const auto face = E::faces()[static_cast<std::size_t>(f)];
         bool on_fe_body = true;
         for (int local : face) on_fe_body = on_fe_body && fe_.node_mask()[node(local)] != 0;
         if (!on_fe_body) continue;
-        static_assert(E::kNodesPerFace == 2 || E::kNodesPerFace == 3, "2-D faces: two corners (+ a mid-side node)");
+        static_assert(E::kNodesPerFace == 2 || E::kNodesPerFace == 3,
+                      "2-D faces: two corners (+ a mid-side node)");
         if constexpr (E::kNodesPerFace == 3)
           out[static_cast<std::size_t>(f)] = fe_.velocity[node(face[2])];
         else
-          out[static_cast<std::size_t>(f)] = 0.5 * (fe_.velocity[node(face[0])] + fe_.velocity[node(face[1])]);
+          out[static_cast<std::size_t>(f)] =
+              0.5 * (fe_.velocity[node(face[0])] + fe_.velocity[node(face[1])]);
       }
+    }
+    return out;
+  }
+  /// The one-sided walls' candidate feet as blocks on their particles' host elements: the foot
+  /// moves with its particle, x_f = x_p + F_p r_p, so over the step u~(x_f) = u~(x_p) + grad~ u~(x_p)
+  /// d with d = x_f - x_p: weights W_J = N_J(x_p) + grad~ N_J(x_p) . d (exact for the particle's
+  /// affine motion; the foot itself may lie in an element without material, where the field is
+  /// only extrapolated). The penalty stiffness is k = kFootPenalty (lambda + 2 mu)_max L^(D-2), L
+  /// the host element's extent.
+  void locate_feet(const ParticleSet<D>& particles, const ImplicitParticleState<D>& state) {
+    double modulus = 0.0;
+    for (const Material& m : materials_) modulus = std::max(modulus, m.lambda + 2.0 * m.mu);
+    feet_.clear();
+    for (const WallContact<D>& c : one_sided_.candidates()) {
+      const Index element = state.element[c.particle];
+      const Vec<D>& xi = state.xi[c.particle];
+      const NodeMatrix<E> nodes = gather_nodes<E>(reference_, mesh_.element_nodes(element));
+      const double extent = (nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).maxCoeff();
+      const Vec<D> offset = c.foot - particles.x[c.particle];
+      FootBlock<E> foot{element,
+                        E::values(xi) + physical_gradients<E>(nodes, xi) * offset,
+                        c.plane.axis,
+                        c.plane.outward,
+                        c.gap,
+                        c.no_slip,
+                        kFootPenalty * modulus * std::pow(extent, D - 2)};
+      feet_.push_back(foot);
+    }
+  }
+  /// The blocks of the feet in contact this round.
+  std::vector<FootBlock<E>> feet_in_contact() const {
+    std::vector<FootBlock<E>> out;
+    for (std::size_t c = 0; c < feet_.size(); ++c)
+      if (one_sided_.in_contact()[c] != 0) out.push_back(feet_[c]);
+    return out;
+  }
+  /// u~(x_f) . (-n) of every candidate foot.
+  std::vector<double> feet_inward_displacements(const Eigen::VectorXd& u) const {
+    std::vector<double> out(feet_.size(), 0.0);
+    for (std::size_t c = 0; c < feet_.size(); ++c) {
+      const FootBlock<E>& foot = feet_[c];
+      const auto nodes = mesh_.element_nodes(foot.element);
+      double s = 0.0;
+      for (int J = 0; J < E::kNodes; ++J)
+        s += foot.W[J] * u[nodes[static_cast<std::size_t>(J)] * D + foot.normal_axis];
+      out[c] = -foot.outward * s;
     }
     return out;
   }
@@ -252,7 +311,7 @@ class ParticleNewmarkStepper {
   std::vector<FaceLoad<D>> loads_end_, loads_start_;
   Vec<D> gravity_at_start_ = options_.gravity;  // b^n: the body force of the previous step (defect work)
   OneSidedBoundary<D> one_sided_;
-  std::vector<char> round_dirichlet_;  // dirichlet_ with the one-sided dofs as held this round
+  std::vector<FootBlock<E>> feet_;  // per one-sided candidate: its foot's block
   fem::FeBodies<E> fe_;
   std::optional<fem::ResetExtension<E>> extension_;  // with FE bodies: the background's x~ (8b)
 };
@@ -260,9 +319,8 @@ class ParticleNewmarkStepper {
 template <class E, class Material>
 void ParticleNewmarkStepper<E, Material>::project_to_nodes(const ParticleSet<D>& particles,
                                                            const ImplicitParticleState<D>& state) {
-  lumped_projection<E>(
-      mesh_, {state.element, state.xi, particles.mass, particles.v, state.acceleration}, node_velocity_,
-      node_acceleration_);
+  lumped_projection<E>(mesh_, {state.element, state.xi, particles.mass, particles.v, state.acceleration},
+                       node_velocity_, node_acceleration_);
 }
 
 template <class E, class Material>
@@ -395,13 +453,16 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
     report.assembly_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return ok;
   };
-  if (!one_sided_.empty()) one_sided_.start_step(mesh_.nodes, particles);
+  if (!one_sided_.empty()) {
+    one_sided_.start_step(particles, dt);
+    locate_feet(particles, state);
+  }
   Eigen::VectorXd u;
-  for (;;) {  // one solve, or one per change of the one-sided boundaries' held set
+  for (;;) {  // one solve, or one per change of the one-sided walls' contact set
     using StepData = typename ParticleNewmarkSystem<E, Material>::StepData;
     StepData round = one_sided_.empty() ? std::move(data) : StepData(data);  // rounds > 1 re-use data
-    if (!one_sided_.empty()) round_dirichlet_ = one_sided_.dirichlet(dirichlet_);
-    round.dirichlet = one_sided_.empty() ? dirichlet_ : round_dirichlet_;  // a view: must outlive the step
+    round.dirichlet = dirichlet_;
+    if (!one_sided_.empty()) round.feet = feet_in_contact();
     system_.setup(std::move(round));
     // u~ = 0 (§6) but at moving Dirichlet dofs, which keep their value (identity rows, zero residual).
     u = Eigen::VectorXd::Zero(system_.dof_count());
@@ -411,9 +472,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
     ++report.solves;
     report.iterations += report.newton.iterations();
     if (one_sided_.empty() || !report.newton.converged() || report.solves >= one_sided_.max_rounds()) break;
-    Eigen::VectorXd reaction;  // the unconstrained residual: the wall's force at the held dofs
-    system_.assemble(u, reaction, nullptr, false);
-    if (!one_sided_.update(u, reaction)) break;
+    if (!one_sided_.update(feet_inward_displacements(u))) break;
   }
   if (report.newton.converged()) {
     report.boundary_work = boundary_work(u);

@@ -5,6 +5,9 @@
 //     C_E > 0, Jacobian by forward-mode AD (ad_jacobian.hpp);
 //   - one per loaded boundary face of an active element: the surface load (surface_load.hpp), its
 //     load stiffness by AD for a follower pressure;
+//   - one per particle foot in contact with a one-sided wall (one_sided_boundary.hpp): the penalty
+//     (k/2) (g + u~(x_f) . (-n))^2, and (k/2) |P_t u~(x_f)|^2 on a no-slip wall, u~(x_f) =
+//     sum_J W_J u~_J on the particle's host element; linear;
 //   - one per dof of the nodes in I_ib: the lumped-mass equation (27) summed over the node's inactive
 //     elements (linear and diagonal, so the Jacobian is the node mass itself);
 // assembled by the generic SparseAssembly; Dirichlet dofs are identity rows. Fixed during the
@@ -26,6 +29,21 @@
 
 namespace matpoint::implicit {
 
+/// A particle foot in contact with a one-sided wall (one_sided_boundary.hpp) on its particle's host
+/// element: the weights W_J with u~(x_f) = sum_J W_J u~_J (ParticleNewmarkStepper::locate_feet), the wall
+/// (normal axis, outward sign), the step-start gap g, whether the tangential components are held too (no
+/// slip) and the penalty stiffness k.
+template <class E>
+struct FootBlock {
+  Index element = 0;
+  Eigen::Matrix<double, E::kNodes, 1> W;
+  int normal_axis = 0;
+  double outward = -1.0;
+  double gap = 0.0;
+  bool no_slip = true;
+  double stiffness = 0.0;
+};
+
 template <class E, class Material>
 class ParticleNewmarkSystem {
  public:
@@ -46,6 +64,7 @@ class ParticleNewmarkSystem {
     std::span<const char> dirichlet;
     std::vector<FaceLoad<kDim>> face_loads;  // at the step's end; faces of inactive elements are skipped
     std::vector<FaceLoad<kDim>> face_loads_at_start;  // the same faces at the step's start (the work)
+    std::vector<FootBlock<E>> feet;                   // particle feet in contact with one-sided walls
     ParticleResidualOptions options;
     int gauss_points_per_direction = 3;  // soft stiffness and lumped mass (the paper's 3 x 3 for Q9)
   };
@@ -72,6 +91,26 @@ class ParticleNewmarkSystem {
  private:
   template <class S>
   void active_residual(Index k, const S* u, S* r) const;
+  /// A foot's block (dofs node-major): per held component i, with s_i = sum_K W_K u_(K,i) (plus the
+  /// gap along -n for the normal one, whose direction is -n), r_(J,i) = k W_J s_i, K = k W W^T.
+  static void add_foot(const FootBlock<E>& foot, std::span<const Index> dofs, const Eigen::VectorXd& u,
+                       double* r, double* K) {
+    for (int i = 0; i < kDim; ++i) {
+      const bool normal = i == foot.normal_axis;
+      if (!normal && !foot.no_slip) continue;
+      double s = 0.0;
+      for (int J = 0; J < kNodes; ++J) s += foot.W[J] * u[dofs[static_cast<std::size_t>(J * kDim + i)]];
+      // normal: the spring's stretch along -n is g + s (-n_i), its force on the dof (-n_i) k (g + s (-n_i))
+      const double offset = normal ? -foot.outward * foot.gap : 0.0;  // (-n_i) g: the stretch in u's sign
+      for (int J = 0; J < kNodes; ++J) {
+        const int row = J * kDim + i;
+        r[row] += foot.stiffness * foot.W[J] * (s + offset);
+        if (K == nullptr) continue;
+        for (int L = 0; L < kNodes; ++L)
+          K[row * kDofs + L * kDim + i] += foot.stiffness * foot.W[J] * foot.W[L];
+      }
+    }
+  }
 
   StepData data_;
   Index active_ = 0;
@@ -132,6 +171,12 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
     loads_start_.push_back(l < data_.face_loads_at_start.size() ? data_.face_loads_at_start[l] : load);
     load_nodes_.push_back(x);
     load_dofs_.push_back(face_dofs);
+  }
+  // Feet: every dof of the host element (node-major, as an element block).
+  for (const FootBlock<E>& foot : data_.feet) {
+    for (const Index node : mesh.element_nodes(foot.element))
+      for (int i = 0; i < kDim; ++i) dofs.push_back(node * kDim + i);
+    offsets.push_back(static_cast<Index>(dofs.size()));
   }
   // Inactive elements: the mass equations (27) of their I_ib nodes, summed per node (a row-sum
   // lumped mass), one 1 x 1 block per dof: the pattern of these rows is the diagonal alone (blocks
@@ -242,8 +287,13 @@ bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eige
             residual_only<kFaceDofs>(u_f.data(), residual, r);
           return;
         }
+        const auto foot_count = static_cast<Index>(data_.feet.size());
+        if (b < active_ + face_count + foot_count) {
+          add_foot(data_.feet[static_cast<std::size_t>(b - active_ - face_count)], dofs, u, r, k);
+          return;
+        }
         // (27): r = m u for one dof of an I_ib node, dr/du = m.
-        const double m = mass_dof_[static_cast<std::size_t>(b - active_ - face_count)];
+        const double m = mass_dof_[static_cast<std::size_t>(b - active_ - face_count - foot_count)];
         r[0] = m * u[dofs[0]];
         if (k != nullptr) k[0] = m;
       },

@@ -522,11 +522,6 @@ void SpecReader::check_meshfree_conditions(const std::string& basis) {
     if (c.kind != ConditionKind::Fixed && c.kind != ConditionKind::Slip)
       issues_.add(path + ".type", "\"velocity\"",
                   "\"fixed\" or \"slip\"" + with + " (the meshfree step holds its nodes at du = 0)");
-    if (c.one_sided)
-      issues_.add(path + ".one_sided", "true",
-                  "false" + with +
-                      " (a one-sided wall holds mesh nodes under the body; the meshfree body's nodes are "
-                      "Lagrangian and roll away with it)");
     if (c.receding > 0)
       issues_.add(path + ".receding", format_number(c.receding),
                   "0" + with + " (an MPM element's correction)");
