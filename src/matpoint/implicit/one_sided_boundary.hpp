@@ -114,6 +114,25 @@ std::vector<Vec<D>> surface_search_directions() {
   return out;
 }
 
+/// Where the ray X + t d (t <= range) first leaves body's shape: a march in eighths of the range,
+/// then 40 bisections; -1 when it stays inside, or stays inside beyond `shorter_than` (no exit
+/// shorter than a known one).
+template <int D>
+double ray_exit(const BodyShapeTest<D>& inside, int body, const Vec<D>& X, const Vec<D>& d, double range,
+                double shorter_than = std::numeric_limits<double>::infinity()) {
+  double inner = 0.0, outer = -1.0;
+  for (int k = 1; k <= 8 && outer < 0.0 && inner < shorter_than; ++k) {
+    const double t = range * k / 8.0;
+    (inside(body, X + t * d) ? inner : outer) = t;
+  }
+  if (outer < 0.0) return -1.0;
+  for (int k = 0; k < 40; ++k) {
+    const double mid = 0.5 * (inner + outer);
+    (inside(body, X + mid * d) ? inner : outer) = mid;
+  }
+  return inner;
+}
+
 /// Per particle, the reference vector r_p from its reference position x0 to the nearest point of
 /// its body's surface: the shortest ray to the outside of the shape among
 /// surface_search_directions(), searched to 1.5 times the particle's largest size (a march in
@@ -133,19 +152,9 @@ std::vector<Vec<D>> nearest_surface_vectors(const ParticleSet<D>& particles, con
     const double range = 1.5 * particles.size0[p].maxCoeff();
     double best = std::numeric_limits<double>::infinity();
     Vec<D> best_direction = Vec<D>::Zero();
-    for (const Vec<D>& d : directions) {
-      double inner = 0.0, outer = -1.0;
-      for (int k = 1; k <= 8 && outer < 0.0 && inner < best; ++k) {  // beyond best: no shorter exit
-        const double t = range * k / 8.0;
-        (inside(body, X + t * d) ? inner : outer) = t;
-      }
-      if (outer < 0.0) continue;
-      for (int k = 0; k < 40; ++k) {
-        const double mid = 0.5 * (inner + outer);
-        (inside(body, X + mid * d) ? inner : outer) = mid;
-      }
-      if (inner < best) best = inner, best_direction = d;
-    }
+    for (const Vec<D>& d : directions)
+      if (const double t = ray_exit(inside, body, X, d, range, best); t >= 0.0 && t < best)
+        best = t, best_direction = d;
     out[p] = std::isfinite(best) ? Vec<D>(best * best_direction)
                                  : Vec<D>::Constant(std::numeric_limits<double>::quiet_NaN());
   }
@@ -178,19 +187,8 @@ SurfaceFeet<D> surface_feet(const ParticleSet<D>& particles, const BodyShapeTest
     const int body = particles.body[p];
     const double size = particles.size0[p].maxCoeff(), range = 1.5 * size;
     std::vector<Vec<D>> exits;
-    for (const Vec<D>& d : directions) {
-      double inner = 0.0, outer = -1.0;
-      for (int k = 1; k <= 8 && outer < 0.0; ++k) {
-        const double t = range * k / 8.0;
-        (inside(body, X + t * d) ? inner : outer) = t;
-      }
-      if (outer < 0.0) continue;
-      for (int k = 0; k < 40; ++k) {
-        const double mid = 0.5 * (inner + outer);
-        (inside(body, X + mid * d) ? inner : outer) = mid;
-      }
-      exits.push_back(inner * d);
-    }
+    for (const Vec<D>& d : directions)
+      if (const double t = ray_exit(inside, body, X, d, range); t >= 0.0) exits.push_back(t * d);
     if (exits.empty()) continue;
     const Vec<D> nearest = *std::min_element(
         exits.begin(), exits.end(), [](const Vec<D>& a, const Vec<D>& b) { return a.norm() < b.norm(); });
