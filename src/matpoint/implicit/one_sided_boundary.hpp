@@ -115,13 +115,11 @@ std::vector<Vec<D>> surface_search_directions() {
 }
 
 /// Where the ray X + t d (t <= range) first leaves body's shape: a march in eighths of the range,
-/// then 40 bisections; -1 when it stays inside, or stays inside beyond `shorter_than` (no exit
-/// shorter than a known one).
+/// then 40 bisections; -1 when it stays inside.
 template <int D>
-double ray_exit(const BodyShapeTest<D>& inside, int body, const Vec<D>& X, const Vec<D>& d, double range,
-                double shorter_than = std::numeric_limits<double>::infinity()) {
+double ray_exit(const BodyShapeTest<D>& inside, int body, const Vec<D>& X, const Vec<D>& d, double range) {
   double inner = 0.0, outer = -1.0;
-  for (int k = 1; k <= 8 && outer < 0.0 && inner < shorter_than; ++k) {
+  for (int k = 1; k <= 8 && outer < 0.0; ++k) {
     const double t = range * k / 8.0;
     (inside(body, X + t * d) ? inner : outer) = t;
   }
@@ -131,34 +129,6 @@ double ray_exit(const BodyShapeTest<D>& inside, int body, const Vec<D>& X, const
     (inside(body, X + mid * d) ? inner : outer) = mid;
   }
   return inner;
-}
-
-/// Per particle, the reference vector r_p from its reference position x0 to the nearest point of
-/// its body's surface: the shortest ray to the outside of the shape among
-/// surface_search_directions(), searched to 1.5 times the particle's largest size (a march in
-/// eighths, then 40 bisections); NaN where no ray leaves the shape (an interior particle). The
-/// length is exact along the directions searched, so it is at most 1/cos(2.5 deg) - 1 = 0.1 % long in
-/// 2-D (the ray nearest the normal) and about 1/cos(7.5 deg) - 1 = 0.9 % in 3-D.
-template <int D>
-std::vector<Vec<D>> nearest_surface_vectors(const ParticleSet<D>& particles, const BodyShapeTest<D>& inside) {
-  std::vector<Vec<D>> out(particles.size());
-  const std::vector<Vec<D>> directions = surface_search_directions<D>();
-  const auto count = static_cast<std::ptrdiff_t>(particles.size());
-#pragma omp parallel for schedule(dynamic, 64)
-  for (std::ptrdiff_t q = 0; q < count; ++q) {
-    const auto p = static_cast<std::size_t>(q);
-    const Vec<D>& X = particles.x0[p];
-    const int body = particles.body[p];
-    const double range = 1.5 * particles.size0[p].maxCoeff();
-    double best = std::numeric_limits<double>::infinity();
-    Vec<D> best_direction = Vec<D>::Zero();
-    for (const Vec<D>& d : directions)
-      if (const double t = ray_exit(inside, body, X, d, range, best); t >= 0.0 && t < best)
-        best = t, best_direction = d;
-    out[p] = std::isfinite(best) ? Vec<D>(best * best_direction)
-                                 : Vec<D>::Constant(std::numeric_limits<double>::quiet_NaN());
-  }
-  return out;
 }
 
 /// The feet of the particles near their body's surface (step 1): per particle, the reference
@@ -200,6 +170,22 @@ SurfaceFeet<D> surface_feet(const ParticleSet<D>& particles, const BodyShapeTest
     out.vectors.insert(out.vectors.end(), feet.begin(), feet.end());
     out.offset.push_back(out.vectors.size());
   }
+  return out;
+}
+
+/// Per particle, the reference vector r_p from its reference position x0 to the nearest point of
+/// its body's surface: the shortest ray to the outside of the shape among
+/// surface_search_directions(), searched to 1.5 times the particle's largest size (a march in
+/// eighths, then 40 bisections); NaN where no ray leaves the shape (an interior particle). The
+/// length is exact along the directions searched, so it is at most 1/cos(2.5 deg) - 1 = 0.1 % long in
+/// 2-D (the ray nearest the normal) and about 1/cos(7.5 deg) - 1 = 0.9 % in 3-D.
+template <int D>
+std::vector<Vec<D>> nearest_surface_vectors(const ParticleSet<D>& particles, const BodyShapeTest<D>& inside) {
+  const SurfaceFeet<D> feet = surface_feet(particles, inside);  // the nearest exit is one of each's feet
+  std::vector<Vec<D>> out(particles.size(), Vec<D>::Constant(std::numeric_limits<double>::quiet_NaN()));
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    for (std::size_t k = feet.offset[p]; k < feet.offset[p + 1]; ++k)
+      if (!std::isfinite(out[p][0]) || feet.vectors[k].norm() < out[p].norm()) out[p] = feet.vectors[k];
   return out;
 }
 
