@@ -37,6 +37,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -198,6 +199,30 @@ struct WallContact {
   WallPlane plane;
   bool no_slip = true;
 };
+
+/// A foot's penalty on the D components of n nodes (local dofs node-major, u_local their values):
+/// per held component i (the normal one, and the tangential ones on a no-slip wall), with
+/// s_i = sum_J W_J u_(J,i) plus, for the normal one, the gap as a stretch in u's sign (-n_i g):
+/// r_(J,i) += k W_J s_i and K_(J,i),(L,i) += k W_J W_L (K null: the residual only). The normal
+/// spring's stretch along -n is g + s (-n_i); its energy (k/2) (g + s (-n_i))^2. Used by the MPM
+/// system (ParticleNewmarkSystem) and the meshfree stepper alike.
+template <int D>
+void add_foot_penalty(std::span<const double> W, int normal_axis, double outward, double gap, bool no_slip,
+                      double stiffness, const double* u_local, double* r, double* K) {
+  const std::size_t n = W.size(), m = n * D;
+  for (int i = 0; i < D; ++i) {
+    const bool normal = i == normal_axis;
+    if (!normal && !no_slip) continue;
+    const auto c = static_cast<std::size_t>(i);
+    double s = normal ? -outward * gap : 0.0;
+    for (std::size_t J = 0; J < n; ++J) s += W[J] * u_local[J * D + c];
+    for (std::size_t J = 0; J < n; ++J) {
+      r[J * D + c] += stiffness * W[J] * s;
+      if (K != nullptr)
+        for (std::size_t L = 0; L < n; ++L) K[(J * D + c) * m + L * D + c] += stiffness * W[J] * W[L];
+    }
+  }
+}
 
 template <int D>
 class OneSidedBoundary {

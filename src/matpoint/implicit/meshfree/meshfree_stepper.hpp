@@ -442,23 +442,10 @@ class MeshfreeStepper {
       s += foot.W[J] * du[static_cast<Index>(stencils_.node[k]) * D + i];
     return s;
   }
-  /// A foot's penalty block on its point's cloud (dofs node-major), as the MPM stepper's
-  /// (ParticleNewmarkSystem::add_foot): per held component i, r_(J,i) = k W_J (s_i + offset_i).
+  /// A foot's penalty block on its point's cloud (dofs node-major): add_foot_penalty.
   static void foot_residual(const MeshfreeFoot& foot, const double* u, double* r, double* K) {
-    const std::size_t n = foot.W.size(), m = n * D;
-    for (int i = 0; i < D; ++i) {
-      const bool normal = i == foot.normal_axis;
-      if (!normal && !foot.no_slip) continue;
-      double s = normal ? -foot.outward * foot.gap : 0.0;
-      for (std::size_t J = 0; J < n; ++J) s += foot.W[J] * u[J * D + static_cast<std::size_t>(i)];
-      for (std::size_t J = 0; J < n; ++J) {
-        const std::size_t row = J * D + static_cast<std::size_t>(i);
-        r[row] += foot.stiffness * foot.W[J] * s;
-        if (K != nullptr)
-          for (std::size_t L = 0; L < n; ++L)
-            K[row * m + L * D + static_cast<std::size_t>(i)] += foot.stiffness * foot.W[J] * foot.W[L];
-      }
-    }
+    add_foot_penalty<D>(foot.W, foot.normal_axis, foot.outward, foot.gap, foot.no_slip, foot.stiffness, u, r,
+                        K);
   }
 
   /// Constraint c with multipliers l_i (the last D local dofs): r_Ji += l_i N_J, r_li = sum_J N_J du_Ji.

@@ -15,11 +15,13 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <span>
 #include <vector>
 
 #include "matpoint/implicit/active_set.hpp"
 #include "matpoint/implicit/ad_jacobian.hpp"
+#include "matpoint/implicit/one_sided_boundary.hpp"
 #include "matpoint/implicit/particle_newmark/inactive_mass.hpp"
 #include "matpoint/implicit/particle_newmark/particle_residual.hpp"
 #include "matpoint/implicit/particle_newmark/soft_stiffness.hpp"
@@ -91,25 +93,14 @@ class ParticleNewmarkSystem {
  private:
   template <class S>
   void active_residual(Index k, const S* u, S* r) const;
-  /// A foot's block (dofs node-major): per held component i, with s_i = sum_K W_K u_(K,i) (plus the
-  /// gap along -n for the normal one, whose direction is -n), r_(J,i) = k W_J s_i, K = k W W^T.
+  /// A foot's block (dofs node-major, as an element's): one_sided_boundary.hpp's add_foot_penalty.
   static void add_foot(const FootBlock<E>& foot, std::span<const Index> dofs, const Eigen::VectorXd& u,
                        double* r, double* K) {
-    for (int i = 0; i < kDim; ++i) {
-      const bool normal = i == foot.normal_axis;
-      if (!normal && !foot.no_slip) continue;
-      double s = 0.0;
-      for (int J = 0; J < kNodes; ++J) s += foot.W[J] * u[dofs[static_cast<std::size_t>(J * kDim + i)]];
-      // normal: the spring's stretch along -n is g + s (-n_i), its force on the dof (-n_i) k (g + s (-n_i))
-      const double offset = normal ? -foot.outward * foot.gap : 0.0;  // (-n_i) g: the stretch in u's sign
-      for (int J = 0; J < kNodes; ++J) {
-        const int row = J * kDim + i;
-        r[row] += foot.stiffness * foot.W[J] * (s + offset);
-        if (K == nullptr) continue;
-        for (int L = 0; L < kNodes; ++L)
-          K[row * kDofs + L * kDim + i] += foot.stiffness * foot.W[J] * foot.W[L];
-      }
-    }
+    std::array<double, kDofs> u_local;
+    for (int i = 0; i < kDofs; ++i)
+      u_local[static_cast<std::size_t>(i)] = u[dofs[static_cast<std::size_t>(i)]];
+    add_foot_penalty<kDim>(std::span<const double>(foot.W.data(), kNodes), foot.normal_axis, foot.outward,
+                           foot.gap, foot.no_slip, foot.stiffness, u_local.data(), r, K);
   }
 
   StepData data_;
