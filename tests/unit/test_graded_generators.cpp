@@ -12,7 +12,7 @@
 
 #include "matpoint/particles/graded_generators.hpp"
 
-namespace {
+namespace graded_generators_tests {
 
 using namespace matpoint;
 constexpr double kPi = std::numbers::pi;
@@ -149,4 +149,4 @@ TEST(GradedGenerators, RejectsBadParameters) {
   EXPECT_EQ(graded_beam(0, 0, 0.15, 0.625, 0.15, 20, 1.148, 1e4).layers, 0);
 }
 
-}  // namespace
+}  // namespace graded_generators_tests

@@ -19,7 +19,7 @@
 #include "matpoint/material/material.hpp"
 #include "matpoint/material/multisurface_return.hpp"
 
-namespace {
+namespace plasticity_tests {
 
 using namespace matpoint;
 
@@ -612,9 +612,9 @@ TEST(Plasticity, SimpleShearStaysOnTheYieldSurface) {
   EXPECT_GT(plastic, 100);
 }
 
-}  // namespace
+}  // namespace plasticity_tests
 
-namespace {
+namespace plasticity_tests {
 
 TEST(Plasticity, GeostaticInitialStressIsHeldByThePlasticState) {
   // bodies[].geostatic: sigma_yy = -rho g (surface - y), sigma_xx = sigma_zz = K0 sigma_yy at t = 0
@@ -639,4 +639,4 @@ TEST(Plasticity, GeostaticInitialStressIsHeldByThePlasticState) {
   }
 }
 
-}  // namespace
+}  // namespace plasticity_tests

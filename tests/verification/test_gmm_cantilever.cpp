@@ -19,7 +19,7 @@
 #include "matpoint/material/neo_hookean.hpp"
 
 namespace matpoint {
-namespace {
+namespace gmm_cantilever_tests {
 
 constexpr double kPaperReference = 0.67433;  // Iaconeta 2017 §5.1, finest mesh (h = 0.01)
 
@@ -148,5 +148,5 @@ TEST_F(GmmCantilever, SmoothMlsWeightIsAccurateAndConverges) {
   EXPECT_LT(std::abs(u[2] - u[1]), std::abs(u[1] - u[0]) / 4);
 }
 
-}  // namespace
+}  // namespace gmm_cantilever_tests
 }  // namespace matpoint

@@ -25,7 +25,7 @@
 #include "test_support.hpp"
 
 namespace matpoint {
-namespace {
+namespace gmm_run_tests {
 
 constexpr double kPaperReference = 0.67433;  // Iaconeta 2017 §5.1, finest mesh (h = 0.01)
 constexpr double kFemErrorH05 = 0.074671;    // Q4 FEM at h = 0.5 (extraction §8.1)
@@ -157,5 +157,5 @@ TEST_F(GmmRun, BlockFallingOntoTheFloorLandsOnIt) {
   }
 }
 
-}  // namespace
+}  // namespace gmm_run_tests
 }  // namespace matpoint

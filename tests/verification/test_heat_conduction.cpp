@@ -27,7 +27,7 @@
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 
-namespace {
+namespace heat_conduction_tests {
 
 using namespace matpoint;
 constexpr double kPi = std::numbers::pi;
@@ -255,4 +255,4 @@ TEST(HeatConduction, AdiabaticCompressionHeatsByTheThermoelasticValue) {
   EXPECT_LT(worst_finite, 1e-9);  // the finite form T0 exp(-3 K alpha ln J / (rho0 C_V)), to round-off
 }
 
-}  // namespace
+}  // namespace heat_conduction_tests

@@ -15,7 +15,7 @@
 #include "test_support.hpp"
 
 namespace matpoint {
-namespace {
+namespace implicit_free_fall_tests {
 
 constexpr double kG = 9.81, kDt = 0.01, kBeta = 0.3, kGamma = 0.5;
 
@@ -167,5 +167,5 @@ TEST(ImplicitFreeFall, BodyForceInitialisationIsExact2D) { expect_fall(2, "body_
 TEST(ImplicitFreeFall, PaperInitialisationFollowsDiscreteNewmark3D) { expect_fall(3, "zero"); }
 TEST(ImplicitFreeFall, BodyForceInitialisationIsExact3D) { expect_fall(3, "body_force"); }
 
-}  // namespace
+}  // namespace implicit_free_fall_tests
 }  // namespace matpoint

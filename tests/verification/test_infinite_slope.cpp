@@ -49,7 +49,7 @@
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 
-namespace {
+namespace infinite_slope_tests {
 
 using namespace matpoint;
 
@@ -187,4 +187,4 @@ TEST(InfiniteSlope, NonAssociatedFlowIsWeakerInSimpleShear) {
             << "], mean " << run.mean_ratio << " (sin phi = " << std::sin(kPhi) << ")\n";
 }
 
-}  // namespace
+}  // namespace infinite_slope_tests

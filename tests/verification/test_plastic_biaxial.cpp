@@ -43,7 +43,7 @@
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 
-namespace {
+namespace plastic_biaxial_tests {
 
 using namespace matpoint;
 
@@ -244,4 +244,4 @@ TEST(PlasticBiaxial, AssociatedFlowDilatesAtTheFlowRulesRate) {
             << b.min_flow_ratio << ", " << b.max_flow_ratio << "] (-m = " << -m << ")\n";
 }
 
-}  // namespace
+}  // namespace plastic_biaxial_tests

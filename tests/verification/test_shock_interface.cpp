@@ -36,7 +36,7 @@
 #include "matpoint/shape/cpdi_stencils.hpp"
 #include "test_support.hpp"
 
-namespace {
+namespace shock_interface_tests {
 
 using namespace matpoint;
 
@@ -205,4 +205,4 @@ TEST(ShockInterface, FrictionlessInterfaceNetMatchesTheSingleMaterialAndEvolving
   EXPECT_GT(largest_column_difference(single, evolving, near), 0.04);
 }
 
-}  // namespace
+}  // namespace shock_interface_tests

@@ -32,7 +32,7 @@
 #include "matpoint/material/material.hpp"
 
 namespace matpoint {
-namespace {
+namespace thick_cylinder_tests {
 
 using implicit::FaceLoad;
 using implicit::ImplicitMaterial;
@@ -201,5 +201,5 @@ TEST(ThickCylinder, ResidualStressAfterUnloadingIsHills) {
   EXPECT_LT(fine.residual, 0.25 * coarse.residual);
 }
 
-}  // namespace
+}  // namespace thick_cylinder_tests
 }  // namespace matpoint

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-namespace {
+namespace two_disks_tests {
 
 using namespace matpoint;
 using namespace matpoint::test;
@@ -48,4 +48,4 @@ TEST(TwoDisksExample, AsShippedPassesItsChecks) {
   for (const auto& check : result.summary["checks"]) EXPECT_TRUE(check["pass"].get<bool>()) << check.dump();
 }
 
-}  // namespace
+}  // namespace two_disks_tests

@@ -24,7 +24,7 @@
 #include "matpoint/shape/tensor_bases.hpp"
 #include "matpoint/shape/tensor_stencils.hpp"
 
-namespace {
+namespace update_schemes_tests {
 
 using namespace matpoint;
 
@@ -130,4 +130,4 @@ INSTANTIATE_TEST_SUITE_P(AllSchemes, UpdateSchemeStrain,
                            return name;
                          });
 
-}  // namespace
+}  // namespace update_schemes_tests
