@@ -11,6 +11,11 @@
 //     Jacobian, e_{k+1} <= M e_k^2 near the root (Kantorovich; e.g. Kelley, Iterative Methods for
 //     Linear and Nonlinear Equations, Thm. 5.1.1), so the ratios e_{k+1} / e_k^2 stay bounded,
 //     while under linear convergence they would grow like 1 / e_k.
+//   - Round-off stop: a linear system whose residual is formed by cancellation (K (U + u) - f with
+//     |U| ~ 5e9 |u*|, as an updated-Lagrangian internal force carries the whole history) has a
+//     residual floor near eps |K| |U| (measured: 3e-7 |R_0|, constant from the first iterate on)
+//     and an increment noise near eps |U| (5e-7 |u*|), so the 1e-9 increment test is never met:
+//     Newton must stop at the floor as converged.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -310,6 +315,41 @@ TEST(ImplicitNewton, LineSearchMakesTheResidualDecreaseAndTheResidualTestStopsEa
   ASSERT_TRUE(early.converged());
   EXPECT_LE(early.final_residual_norm, 1e-3 * early.history[0].residual_norm);
   EXPECT_GT(early.final_residual_norm, 1e-10 * early.history[0].residual_norm);
+}
+
+TEST(ImplicitNewton, StopsAtTheRoundOffFloorOfACancellingResidual) {
+  SparseAssembly pattern;
+  const std::vector<Index> offsets{0, 2}, dofs{0, 1};
+  pattern.build(2, offsets, dofs, {});
+  Eigen::Matrix2d k_dense;
+  k_dense << 2.1e3 / 3.0, -1e3 / 7.0, -1.1e3 / 7.0, 1.9e3 / 3.0;  // entries not exact in binary
+  const Eigen::Vector2d history_offset(std::sqrt(2.0) * 1e6, std::sqrt(3.0) * 1e6), root(1e-3 / 3.0, -2e-3 / 7.0);
+  // f rounded apart from K (U + u*), so no double u makes the computed residual exactly 0.
+  const Eigen::Vector2d f = k_dense * history_offset + k_dense * root;
+  const auto assemble = [&](const Eigen::VectorXd& x, Eigen::VectorXd& R, SparseMatrix* K) {
+    R = k_dense * (history_offset + x) - f;
+    if (K) {
+      *K = pattern.pattern();
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) K->coeffRef(i, j) = k_dense(i, j);
+    }
+    return true;
+  };
+  auto solver = make_linear_solver();
+  NewtonOptions options;
+  options.round_off_relative = 0.0;  // without the stop: the increment test is never met
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(2);
+  const NewtonResult wandering = newton_solve(assemble, pattern.pattern_version(), *solver, u, options);
+  EXPECT_EQ(wandering.status, NewtonStatus::MaxIterations);
+  options.round_off_relative = 1e-6;
+  u.setZero();
+  const NewtonResult stopped = newton_solve(assemble, pattern.pattern_version(), *solver, u, options);
+  ASSERT_TRUE(stopped.converged()) << stopped.message;
+  EXPECT_TRUE(stopped.round_off_stop);
+  EXPECT_LE(stopped.iterations(), 4);
+  // The answer is the root to the floor: |u - u*| <= 1e-5 |u*| (the floor is ~3e-7 |u*|).
+  EXPECT_LT((u - Eigen::VectorXd(root)).norm(), 1e-5 * root.norm());
+  EXPECT_LE(stopped.final_residual_norm, 1e-6 * stopped.history[0].residual_norm);
 }
 
 TEST(ImplicitNewton, NumericalTroubleIsAStatusNotAnException) {

@@ -176,7 +176,7 @@ class ImplicitMpmSolver {
         defect_work_ += report.defect_work;
       }
       // every solve of the step counts (one-sided walls: several)
-      return SubStepOutcome{report.ok(), report.lost_particles > 0, report.iterations};
+      return SubStepOutcome{report.ok(), report.lost_particles > 0, report.iterations, report.round_off_stops};
     };
     advance_with_cuts<D>(h, spec_.solver.implicit.max_step_cuts, sim_, totals_, step_size_, attempt,
                          [&](double sub, int cuts) { fail(report, sub, cuts); });
@@ -314,6 +314,7 @@ class ImplicitMpmSolver {
                                                        : 0.0;
     s["max_newton_iterations_in_a_step"] = totals_.max_iterations_in_a_step;
     s["step_cuts"] = totals_.step_cuts;
+    s["newton_round_off_stops"] = totals_.newton_round_off_stops;
     if (spec_.solver.implicit.adaptive.enabled) s["adaptive_dt_at_end"] = step_size_.current();
     s["linear_solver"] = std::string(stepper_->linear_solver().name());
     s["assembly_seconds"] = totals_.assembly_seconds;

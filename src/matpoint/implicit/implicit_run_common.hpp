@@ -59,6 +59,7 @@ namespace matpoint::implicit {
 struct ImplicitTotals {
   long steps = 0, newton_iterations = 0, step_cuts = 0, max_iterations_in_a_step = 0;
   double assembly_seconds = 0.0;
+  long newton_round_off_stops = 0;  // Newton solves ended by the round-off stop (newton.hpp)
 };
 
 /// What history.csv's solver columns need: the totals at the previous row and the last residual.
@@ -154,6 +155,7 @@ struct SubStepOutcome {
   bool ok = false;
   bool give_up = false;  // a failure that a smaller step cannot mend (particles lost)
   int iterations = 0;    // Newton iterations of every solve of the attempt
+  int round_off_stops = 0;  // solves of the attempt that converged by Newton's round-off stop
 };
 
 /// Advances by h through attempt(offset, sub), which tries the sub-step [t + offset, t + offset +
@@ -169,6 +171,7 @@ void advance_with_cuts(double h, int max_cuts, Simulation<D>& sim, ImplicitTotal
     sub = std::min(sub, h - done);
     const SubStepOutcome outcome = attempt(done, sub);
     totals.newton_iterations += outcome.iterations;
+    totals.newton_round_off_stops += outcome.round_off_stops;
     totals.max_iterations_in_a_step = std::max<long>(totals.max_iterations_in_a_step, outcome.iterations);
     if (!outcome.ok) {
       if (outcome.give_up || cuts >= max_cuts) fail(sub, cuts);
@@ -216,6 +219,7 @@ inline void save_run_totals(RunCounters& c, const ImplicitTotals& totals, const 
   c.solver_state["history_marks"] = {static_cast<double>(marks.newton_iterations),
                                      static_cast<double>(marks.step_cuts), marks.newton_residual};
   c.solver_state["dt"] = {step_size.current()};
+  c.solver_state["round_off_stops"] = {static_cast<double>(totals.newton_round_off_stops)};
 }
 
 /// The checkpoint's array solver/`name` of `size` values; throws InputError (--restart) saying what
@@ -236,6 +240,9 @@ inline void restore_run_totals(const RunCounters& c, ImplicitTotals& totals, His
   totals = {static_cast<long>(t[0]), static_cast<long>(t[1]), static_cast<long>(t[2]),
             static_cast<long>(t[3]), t[4]};
   marks = {static_cast<long>(m[0]), static_cast<long>(m[1]), m[2]};
+  // Checkpoints written before 2026-11-28 have no count: it restarts from 0.
+  if (const auto it = c.solver_state.find("round_off_stops"); it != c.solver_state.end() && it->second.size() == 1)
+    totals.newton_round_off_stops = static_cast<long>(it->second[0]);
   step_size.restore(checkpoint_array(c, "dt", 1, expected)[0]);
 }
 

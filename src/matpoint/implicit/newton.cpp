@@ -20,6 +20,12 @@ bool increment_converged(const Eigen::VectorXd& du, const Eigen::VectorXd& u, co
   return true;
 }
 
+/// |R_k| is below round_off_relative |R_0| and the last iteration did not halve it.
+bool stalled_at_round_off(const std::vector<NewtonIteration>& history, double rn, double r0,
+                          const NewtonOptions& o) {
+  return !history.empty() && rn <= o.round_off_relative * r0 && rn > 0.5 * history.back().residual_norm;
+}
+
 }  // namespace
 
 std::string_view newton_status_name(NewtonStatus status) {
@@ -62,6 +68,11 @@ NewtonResult newton_solve(const AssembleFunction& assemble, std::uint64_t patter
     const double residual_target = std::max(o.residual_absolute, o.residual_relative * r0);
     if (residual_target > 0.0 && rn <= residual_target) {
       result.status = NewtonStatus::Converged;
+      return result;
+    }
+    if (stalled_at_round_off(result.history, rn, r0, o)) {
+      result.status = NewtonStatus::Converged;
+      result.round_off_stop = true;
       return result;
     }
     if (k == o.max_iterations) return fail(NewtonStatus::MaxIterations, "no convergence");

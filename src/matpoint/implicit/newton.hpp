@@ -6,6 +6,12 @@
 //     (1e-9); a component whose |u_c| is below displacement_floor (1e-13, as the code) counts as
 //     converged; dof k belongs to component k % components (node-major numbering);
 //   - optional residual test: |R| <= max(residual_absolute, residual_relative |R_0|);
+//   - round-off stop: once |R_k| <= round_off_relative |R_0| (1e-6, a hundred times below Kratos'
+//     default residual test 1e-4 |R_0|, Iaconeta extraction A7) an iteration that does not halve
+//     |R| ends Newton as converged (flagged): quadratic convergence from there would reach
+//     round-off in one more step, so a residual that stops falling is at the floor set by the
+//     cancellation in the internal force (or a non-smooth contact term), and more iterations only
+//     wander (seen: GMM-MLS rolling disk, |R| 985 -> 3e-9 then the increment test never met);
 //   - at most max_iterations (20) linear solves.
 // Optional backtracking line search on |R|. Numerical trouble (NaN, divergence, a singular or failed
 // linear solve, a failed assembly) ends with a failure status, never with an exception.
@@ -27,6 +33,7 @@ struct NewtonOptions {
   int components = 1;
   double residual_absolute = 0.0;  // 0 with residual_relative = 0: no residual test
   double residual_relative = 0.0;
+  double round_off_relative = 1e-6;  // 0: no round-off stop
   double divergence_factor = 1e12;  // |R| > divergence_factor (|R_0| + tiny): diverged
   bool line_search = false;
   int line_search_max_halvings = 10;
@@ -45,6 +52,7 @@ struct NewtonResult {
   NewtonStatus status = NewtonStatus::MaxIterations;
   std::vector<NewtonIteration> history;
   double final_residual_norm = 0.0;  // |R| at the returned u (when it was assembled)
+  bool round_off_stop = false;       // converged by the round-off stop (not the increment test)
   std::string message;
   [[nodiscard]] bool converged() const { return status == NewtonStatus::Converged; }
   [[nodiscard]] int iterations() const { return static_cast<int>(history.size()); }

@@ -126,6 +126,7 @@ class MeshfreeSolver {
       const Vec<D> gravity = gravity_at<D>(spec_, sim_.time + done + sub);  // at the end of the sub-step
       const std::vector<Vec<D>> nodes_before = body_.node_x;
       const double assembly_before = stepper_.assembly_seconds();
+      const int round_off_stops_before = stepper_.round_off_stops();
       if (spec_.solver.implicit.meshfree.delete_failed_points) delete_failed_points();
       hold_nodes_on_walls();
       OneSidedBoundary<D>* walls = nullptr;
@@ -141,7 +142,8 @@ class MeshfreeSolver {
         account_gravity_work<D>(sim_, previous_x_, sub, gravity);
         probe_step(nodes_before);
       }
-      return SubStepOutcome{result.converged(), false, result.iterations()};
+      return SubStepOutcome{result.converged(), false, result.iterations(),
+                            stepper_.round_off_stops() - round_off_stops_before};
     };
     advance_with_cuts<D>(h, spec_.solver.implicit.max_step_cuts, sim_, totals_, step_size_, attempt,
                          [&](double sub, int cuts) { fail(result, sub, cuts); });
@@ -233,6 +235,7 @@ class MeshfreeSolver {
                                                        : 0.0;
     s["max_newton_iterations_in_a_step"] = totals_.max_iterations_in_a_step;
     s["step_cuts"] = totals_.step_cuts;
+    s["newton_round_off_stops"] = totals_.newton_round_off_stops;
     if (spec_.solver.implicit.adaptive.enabled) s["adaptive_dt_at_end"] = step_size_.current();
     s["linear_solver"] = std::string(stepper_.linear_solver().name());
     s["assembly_seconds"] = totals_.assembly_seconds;

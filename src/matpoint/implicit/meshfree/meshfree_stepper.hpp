@@ -178,6 +178,7 @@ class MeshfreeStepper {
       du = Eigen::VectorXd::Zero(body.dofs() + multiplier_dofs());
       non_finite_point_ = -1;
       result = newton_solve(assemble, assembly_.pattern_version(), *solver_, du, options_.newton);
+      round_off_stops_ += result.round_off_stop ? 1 : 0;
       if (walls == nullptr || !result.converged() || solves >= walls->max_rounds()) break;
       std::vector<double> inward(candidates_.size());
       for (std::size_t c = 0; c < candidates_.size(); ++c)
@@ -229,6 +230,8 @@ class MeshfreeStepper {
   void reset_repairs() { repairs_ = {}; }
   [[nodiscard]] const LinearSolver& linear_solver() const { return *solver_; }
   [[nodiscard]] double assembly_seconds() const { return assembly_seconds_; }
+  /// Newton solves so far that converged by the round-off stop (newton.hpp).
+  [[nodiscard]] int round_off_stops() const { return round_off_stops_; }
   [[nodiscard]] int colours() const { return assembly_.colour_count(); }
   [[nodiscard]] const MeshfreeStencils<D>& stencils() const { return stencils_; }
   [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
@@ -563,6 +566,7 @@ class MeshfreeStepper {
   std::vector<MeshfreeFoot> candidates_, feet_;  // the walls' candidate feet; those in contact (blocks)
   Eigen::VectorXd last_increment_;
   double assembly_seconds_ = 0.0;
+  int round_off_stops_ = 0;
   Index non_finite_point_ = -1;
 };
 

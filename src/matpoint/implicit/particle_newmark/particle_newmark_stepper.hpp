@@ -92,6 +92,7 @@ struct StepReport {
   double load_work = 0.0;         // work of the surface loads (trapezoidal)
   int solves = 0;                 // Newton solves (one-sided boundaries: one per change of the held set)
   int iterations = 0;             // Newton iterations of all of them
+  int round_off_stops = 0;        // solves that converged by Newton's round-off stop
   /// Particle Newmark only: the work of the step-start equilibrium defect e = M a^n + f_int^n - f_ext^n
   /// over the step, (1/2) u~ . e = (1/2) sum_p [m_p (a_p^n - b^n) . u~_p + V0_p tau_p^n : grad~ u~*_p]
   /// (docs/theory/implicit.md, "The energy audit": K + U changes by this, up to O(dt^3) and a
@@ -471,6 +472,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
         newton_solve(timed_assembly, system_.assembly().pattern_version(), *solver_, u, options_.newton);
     ++report.solves;
     report.iterations += report.newton.iterations();
+    report.round_off_stops += report.newton.round_off_stop ? 1 : 0;
     if (one_sided_.empty() || !report.newton.converged() || report.solves >= one_sided_.max_rounds()) break;
     if (!one_sided_.update(feet_inward_displacements(u))) break;
   }
