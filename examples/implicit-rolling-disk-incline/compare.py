@@ -7,12 +7,14 @@ at t_end against rolling (rolling_final_displacement_error), eq. (67) (rolling_d
 m), the wall time, and each meshfree run's wall time over the MPM run's beside Table 1's ratio.
 
     examples/implicit-rolling-disk-incline/compare.py BUILD/matpoint [INPUT] [--dt 1e-3,5e-4] [--gamma G]
-        [--mls-radius F --mls-dilation F]
+        [--mls-radius F --mls-dilation F] [--methods mesh,mls,lme]
 
 INPUT: default input.json, the frictionless control (the meshfree body's floor nodes slide with it);
 no-slip.json rolls the disk on the one-sided no-slip floor, which acts on the points' surface feet
 for MPM and the meshfree method alike (docs/input.md). The paper's MLS clouds for this test: --mls-radius 4.2426 --mls-dilation 2.8284
-(R = 1.5 "2h sqrt 2", R_eff = "2h sqrt 2", extraction §6.4). README.md has the last output.
+(R = 1.5 "2h sqrt 2", R_eff = "2h sqrt 2", extraction §6.4). --methods runs a subset (the run-time
+ratio needs "mesh" in it), e.g. --methods lme --gamma 0.8 for Table 1's gamma study. README.md has
+the last output.
 """
 import json
 import os
@@ -75,11 +77,14 @@ def main(argv):
     options = {"gamma": option(argv, "--gamma"), "mls_radius": option(argv, "--mls-radius"),
                "mls_dilation": option(argv, "--mls-dilation")}
     options = {k: float(v) for k, v in options.items() if v}
+    methods = (option(argv, "--methods") or "mesh,mls,lme").split(",")
     print(f"{'method':8} {'dt (s)':>8} {'a / (2/3 g sin)':>15} {'u(t_end) err':>12} {'eq. (67) m':>10} "
           f"{'wall s':>7} {'/ MPM':>6} {'Table 1':>7}")
     for k, dt in enumerate(dts):
         mpm_wall = None
         for basis, name in (("mesh", "MPM"), ("mls", "GMM-MLS"), ("lme", "GMM-LME")):
+            if basis not in methods:
+                continue
             measured, summary = run(binary, case(base, basis, dt, options))
             if measured is None:
                 print(f"{name:8} {dt:8.2e} failed: {summary}", flush=True)

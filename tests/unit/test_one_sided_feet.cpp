@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "matpoint/implicit/one_sided_boundary.hpp"
@@ -94,6 +95,33 @@ TEST(OneSidedFeet, ADiskOnTheFloorMeetsItWhereItsCircleDoes) {
       "widest gap between feet along the bottom: %.3g m (spacing %.3g m); particle domains on the floor: "
       "%d\n",
       widest, kSpacing, domains_on_floor);
+}
+
+// newmark_stop_displacement: the displacement over a step after which Newmark's velocity update
+// (Iaconeta eq. (43)) gives v^(n+1) = 0, for the trapezoidal rule and two damped pairs; and u = 0
+// instead reverses v under the trapezoidal rule (why a no-slip foot is held at the former).
+TEST(OneSidedFeet, StopDisplacementEndsANewmarkStepAtRest) {
+  const Vec<2> v(1.3, -0.4), a(-7.0, 2.5);
+  const double dt = 2.5e-3;
+  for (const auto& [beta, gamma] : {std::pair{0.25, 0.5}, std::pair{0.3025, 0.6}, std::pair{0.3, 0.5}}) {
+    const auto v_end = [&](const Vec<2>& u) {
+      return Vec<2>(gamma / (beta * dt) * u - (gamma / beta - 1.0) * v - dt * (gamma / (2.0 * beta) - 1.0) * a);
+    };
+    EXPECT_LT(v_end(newmark_stop_displacement<2>(v, a, dt, beta, gamma)).norm(), 1e-12) << beta;
+    if (beta == 0.25) {  // u = 0 reverses v (the trapezoidal rule's a^n term vanishes)
+      EXPECT_LT((v_end(Vec<2>::Zero()) + v).norm(), 1e-12);
+    }
+  }
+  // add_foot_penalty's tangential spring rests at the given displacement: two nodes with weights W,
+  // sum_J W_J u_J equal to the rest value on the tangential axis gives no tangential force.
+  const std::vector<double> W{0.3, 0.7};
+  const double rest[2] = {0.004, 0.0};
+  const double u[4] = {0.002, 0.0, (0.004 - 0.3 * 0.002) / 0.7, 0.0};
+  double r[4] = {0, 0, 0, 0};
+  add_foot_penalty<2>(W, /*normal_axis=*/1, /*outward=*/-1.0, /*gap=*/0.0, /*no_slip=*/true, 1e6, u, r, nullptr,
+                      rest);
+  EXPECT_NEAR(r[0], 0.0, 1e-9);
+  EXPECT_NEAR(r[2], 0.0, 1e-9);
 }
 
 }  // namespace

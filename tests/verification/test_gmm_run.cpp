@@ -157,5 +157,44 @@ TEST_F(GmmRun, BlockFallingOntoTheFloorLandsOnIt) {
   }
 }
 
+// A landing slide on a no-slip floor (meshfree_stepper.hpp, newmark_stop_displacement): a block
+// 0.5 x 0.25 m touching the one-sided floor at v = (1, -0.2) m/s. Its feet land in the first step;
+// a no-slip foot that ends the step at zero tangential displacement would leave it, under the
+// trapezoidal rule, with its sliding velocity reversed (the block at -0.94 m/s at E = 1e10 Pa, as
+// before the stop). The expected value is a rigid body's perfectly inelastic tangential impact: the
+// block at rest along the floor. An elastic block approaches it as the shear wave crosses the height H
+// within the step: the residual velocity is of order (H / (c_s dt))^2, i.e. 1 / E (measured: 3.1e-2,
+// 3.3e-3, 3.0e-4 of v0 at E = 1e10, 1e11, 1e12 with LME; H / (c_s dt) = 0.13, 0.04, 0.013).
+TEST_F(GmmRun, NoSlipFloorStopsALandingSlideInsteadOfReversingIt) {
+  const mesh::Mesh<2> m = mesh::structured_rectangle(
+      mesh::ElementShape::Q4, mesh::AxisSpacing::uniform(0, 2, 16), mesh::AxisSpacing::uniform(0, 0.5, 4));
+  const double v0 = 1.0, dt = 1e-3;
+  for (const char* basis : {"mls", "lme"}) {
+    std::vector<double> mean_slide;
+    for (const char* E : {"1e10", "1e12"}) {
+      const Spec spec = parse_spec(std::string(R"({
+        "mesh": {"element": "q4", "min": [0, 0], "max": [2, 0.5], "cells": [16, 4]},
+        "materials": [{"name": "m", "model": "neo_hookean", "density": 1000, "E": )") +
+                                   E + R"(, "nu": 0.3}],
+        "bodies": [{"material": "m", "particles_per_cell": 2, "placement": "gauss", "velocity": [1, -0.2],
+                    "shape": {"type": "box", "min": [0.5, 0], "max": [1.0, 0.25]}}],
+        "boundary_conditions": [{"type": "fixed", "boundary": "bottom", "one_sided": true}],
+        "solver": {"type": "implicit_ul", "basis": ")" +
+                                   basis + R"(", "dt": 0.001, "end_time": 0.001},
+        "output": {"plots": false}})");
+      implicit::MeshfreeSolver<2> solver(spec, m);
+      solver.step(dt);
+      double sum = 0.0;
+      for (const auto& v : solver.sim().particles.v) sum += v[0];
+      mean_slide.push_back(sum / static_cast<double>(solver.sim().particles.v.size()));
+    }
+    std::printf("GMM-%s landing slide: mean v_x after the landing step %.2e / %.2e m/s at E = 1e10 / 1e12 Pa\n",
+                basis, mean_slide[0], mean_slide[1]);
+    EXPECT_GT(mean_slide[0], 0.0) << basis;  // not reversed
+    EXPECT_LT(std::abs(mean_slide[1]), 1e-3 * v0) << basis;
+    EXPECT_LT(std::abs(mean_slide[1]), std::abs(mean_slide[0]) / 30.0) << basis;  // ~1/E: 1/100
+  }
+}
+
 }  // namespace gmm_run_tests
 }  // namespace matpoint

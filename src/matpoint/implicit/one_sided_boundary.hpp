@@ -200,21 +200,35 @@ struct WallContact {
   bool no_slip = true;
 };
 
+/// The displacement over a step of length dt after which a point with Newmark history (v, a) is at
+/// rest: Newmark's velocity update (Iaconeta eq. (43), lambda = gamma, zeta = beta),
+/// v^(n+1) = gamma/(beta dt) u - (gamma/beta - 1) v - dt (gamma/(2 beta) - 1) a, is zero for
+/// u = dt (1 - beta/gamma) v + dt^2 (1/2 - beta/gamma) a. Holding a no-slip foot at u = 0 instead ends
+/// the step with v^(n+1) = -(gamma/beta - 1) v - dt (gamma/(2 beta) - 1) a, which for the trapezoidal
+/// rule (beta = 1/4, gamma = 1/2) is -v: a landing foot's tangential velocity reflected, not stopped.
+template <int D>
+Vec<D> newmark_stop_displacement(const Vec<D>& v, const Vec<D>& a, double dt, double beta, double gamma) {
+  return dt * (1.0 - beta / gamma) * v + dt * dt * (0.5 - beta / gamma) * a;
+}
+
 /// A foot's penalty on the D components of n nodes (local dofs node-major, u_local their values):
 /// per held component i (the normal one, and the tangential ones on a no-slip wall), with
-/// s_i = sum_J W_J u_(J,i) plus, for the normal one, the gap as a stretch in u's sign (-n_i g):
+/// s_i = sum_J W_J u_(J,i) plus, for the normal one, the gap as a stretch in u's sign (-n_i g) and,
+/// for a tangential one, minus the rest displacement t_i (`tangential_rest`, null: 0):
 /// r_(J,i) += k W_J s_i and K_(J,i),(L,i) += k W_J W_L (K null: the residual only). The normal
 /// spring's stretch along -n is g + s (-n_i); its energy (k/2) (g + s (-n_i))^2. Used by the MPM
-/// system (ParticleNewmarkSystem) and the meshfree stepper alike.
+/// system (ParticleNewmarkSystem, t = 0) and the meshfree stepper (t = newmark_stop_displacement)
+/// alike.
 template <int D>
 void add_foot_penalty(std::span<const double> W, int normal_axis, double outward, double gap, bool no_slip,
-                      double stiffness, const double* u_local, double* r, double* K) {
+                      double stiffness, const double* u_local, double* r, double* K,
+                      const double* tangential_rest = nullptr) {
   const std::size_t n = W.size(), m = n * D;
   for (int i = 0; i < D; ++i) {
     const bool normal = i == normal_axis;
     if (!normal && !no_slip) continue;
     const auto c = static_cast<std::size_t>(i);
-    double s = normal ? -outward * gap : 0.0;
+    double s = normal ? -outward * gap : (tangential_rest != nullptr ? -tangential_rest[i] : 0.0);
     for (std::size_t J = 0; J < n; ++J) s += W[J] * u_local[J * D + c];
     for (std::size_t J = 0; J < n; ++J) {
       r[J * D + c] += stiffness * W[J] * s;

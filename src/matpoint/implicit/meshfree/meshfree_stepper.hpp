@@ -36,6 +36,15 @@
 // that reach a wall are held by penalty blocks on the point's cloud, u(x_f) = sum_J W_J du_J with
 // W_J = N_J(x_p) + grad N_J(x_p) . (x_f - x_p) (the foot moves with its point), and the step is
 // solved again while the contact set changes, as in the MPM stepper; the walls hold no node.
+// No-slip walls hold a foot's tangential displacement at the one that brings it to rest
+// (newmark_stop_displacement from the foot's nodal v, a), not at zero: a foot that lands during the
+// step was still sliding at its start, and u_t = 0 over a trapezoidal step ends it with its tangential
+// velocity reversed. In the rolling disk (examples/implicit-rolling-disk-incline, h = 0.04 m) the
+// reversed feet set off an energy blow-up at the floor at dt2 and dt3 for both bases (LME dt2 at
+// 0.138 s, MLS dt3 at 0.037 s); with the stop every run completes. For a foot already at rest the two
+// agree. The MPM stepper keeps u_t = 0: its grid carries no history (v, a are the particles'
+// projections), and there the stop made the 1-s rolling disk worse (acceleration ratio 1.026 at
+// h = 0.02 m, dt1; examples/implicit-rolling-disk-incline/README.md).
 // After a converged step every point also gets its velocity v_p = sum_I N_I(x_p^n) v_I^{n+1} (for the
 // writers and the energies: the nodes carry the history) and its Cauchy stress from the material's
 // converged update, which advances the plastic state (implicit_material.hpp). The initial nodal
@@ -167,7 +176,7 @@ class MeshfreeStepper {
       return R.allFinite();
     };
     Eigen::VectorXd du;
-    if (walls != nullptr) candidate_feet(*walls, body, wall_stiffness);
+    if (walls != nullptr) candidate_feet(*walls, body, wall_stiffness, dt);
     for (int solves = 1;; ++solves) {  // one solve, or one per change of the walls' contact set
       if (walls != nullptr) {
         feet_.clear();
@@ -424,16 +433,26 @@ class MeshfreeStepper {
     int normal_axis = 0;
     double outward = -1.0, gap = 0.0, stiffness = 0.0;
     bool no_slip = true;
+    Vec<D> tangential_rest = Vec<D>::Zero();  // the no-slip springs' rest displacement (see the top)
   };
 
   /// The walls' candidates as feet on their points' clouds (see the top of this file).
-  void candidate_feet(const OneSidedBoundary<D>& walls, const MeshfreeBody<D>& body, double stiffness) {
+  void candidate_feet(const OneSidedBoundary<D>& walls, const MeshfreeBody<D>& body, double stiffness,
+                      double dt) {
     candidates_.clear();
     for (const WallContact<D>& c : walls.candidates()) {
       MeshfreeFoot foot{c.particle, {}, c.plane.axis, c.plane.outward, c.gap, stiffness, c.no_slip};
       const Vec<D> offset = c.foot - body.point_x[c.particle];
-      for (auto k = stencils_.offset[c.particle]; k < stencils_.offset[c.particle + 1]; ++k)
-        foot.W.push_back(stencils_.N[k] + stencils_.dN[k].dot(offset));
+      Vec<D> v = Vec<D>::Zero(), a = Vec<D>::Zero();  // the foot's Newmark history, from the nodes'
+      for (auto k = stencils_.offset[c.particle]; k < stencils_.offset[c.particle + 1]; ++k) {
+        const double W = stencils_.N[k] + stencils_.dN[k].dot(offset);
+        const auto node = static_cast<std::size_t>(stencils_.node[k]);
+        foot.W.push_back(W);
+        v += W * body.node_v[node], a += W * body.node_a[node];
+      }
+      if (c.no_slip)
+        foot.tangential_rest =
+            newmark_stop_displacement<D>(v, a, dt, options_.newmark.beta, options_.newmark.gamma);
       candidates_.push_back(std::move(foot));
     }
   }
@@ -448,7 +467,7 @@ class MeshfreeStepper {
   /// A foot's penalty block on its point's cloud (dofs node-major): add_foot_penalty.
   static void foot_residual(const MeshfreeFoot& foot, const double* u, double* r, double* K) {
     add_foot_penalty<D>(foot.W, foot.normal_axis, foot.outward, foot.gap, foot.no_slip, foot.stiffness, u, r,
-                        K);
+                        K, foot.tangential_rest.data());
   }
 
   /// Constraint c with multipliers l_i (the last D local dofs): r_Ji += l_i N_J, r_li = sum_J N_J du_Ji.
