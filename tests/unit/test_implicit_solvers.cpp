@@ -23,8 +23,8 @@
 #include <iostream>
 #include <memory>
 
-#include "matpoint/implicit/linear_solver.hpp"
 #include "linear_test_systems.hpp"
+#include "matpoint/implicit/linear_solver.hpp"
 #include "matpoint/implicit/newton.hpp"
 #include "matpoint/implicit/particle_newmark/element_flags.hpp"
 #include "matpoint/implicit/particle_newmark/particle_newmark_system.hpp"
@@ -59,6 +59,28 @@ TEST(ImplicitAssembly, OverlappingBlocksSumAndDirichletRowsAreIdentity) {
   EXPECT_EQ(dense, expected);
   EXPECT_EQ(R, Eigen::Vector3d(1, 2 + 10, 0));
   EXPECT_EQ(a.colour_count(), 2);
+}
+
+// build() with the blocks and Dirichlet flags of the present pattern keeps it and its version (the
+// linear solver then keeps its symbolic analysis: a meshfree body whose clouds did not change, an
+// active set that stayed); any change, in the blocks or the flags, makes a new version.
+TEST(ImplicitAssembly, TheSameBlocksKeepThePatternVersion) {
+  SparseAssembly a;
+  const std::vector<Index> offsets{0, 2, 4}, dofs{0, 1, 1, 2}, other_dofs{0, 1, 0, 2};
+  const std::vector<char> dirichlet{0, 0, 1}, no_dirichlet;
+  a.build(3, offsets, dofs, dirichlet);
+  const std::uint64_t first = a.pattern_version();
+  a.build(3, offsets, dofs, dirichlet);
+  EXPECT_EQ(a.pattern_version(), first);
+  a.build(3, offsets, other_dofs, dirichlet);
+  const std::uint64_t second = a.pattern_version();
+  EXPECT_NE(second, first);
+  const SparseMatrix& P = a.pattern();  // column 2 now couples dofs 0 and 2, no longer 1
+  const std::vector<int> rows_of_column_2(P.innerIndexPtr() + P.outerIndexPtr()[2],
+                                          P.innerIndexPtr() + P.outerIndexPtr()[3]);
+  EXPECT_EQ(rows_of_column_2, (std::vector<int>{0, 2}));
+  a.build(3, offsets, other_dofs, no_dirichlet);
+  EXPECT_NE(a.pattern_version(), second);
 }
 
 using test::convection_diffusion;
@@ -323,7 +345,8 @@ TEST(ImplicitNewton, StopsAtTheRoundOffFloorOfACancellingResidual) {
   pattern.build(2, offsets, dofs, {});
   Eigen::Matrix2d k_dense;
   k_dense << 2.1e3 / 3.0, -1e3 / 7.0, -1.1e3 / 7.0, 1.9e3 / 3.0;  // entries not exact in binary
-  const Eigen::Vector2d history_offset(std::sqrt(2.0) * 1e6, std::sqrt(3.0) * 1e6), root(1e-3 / 3.0, -2e-3 / 7.0);
+  const Eigen::Vector2d history_offset(std::sqrt(2.0) * 1e6, std::sqrt(3.0) * 1e6),
+      root(1e-3 / 3.0, -2e-3 / 7.0);
   // f rounded apart from K (U + u*), so no double u makes the computed residual exactly 0.
   const Eigen::Vector2d f = k_dense * history_offset + k_dense * root;
   const auto assemble = [&](const Eigen::VectorXd& x, Eigen::VectorXd& R, SparseMatrix* K) {

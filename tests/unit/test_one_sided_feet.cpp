@@ -105,7 +105,8 @@ TEST(OneSidedFeet, StopDisplacementEndsANewmarkStepAtRest) {
   const double dt = 2.5e-3;
   for (const auto& [beta, gamma] : {std::pair{0.25, 0.5}, std::pair{0.3025, 0.6}, std::pair{0.3, 0.5}}) {
     const auto v_end = [&](const Vec<2>& u) {
-      return Vec<2>(gamma / (beta * dt) * u - (gamma / beta - 1.0) * v - dt * (gamma / (2.0 * beta) - 1.0) * a);
+      return Vec<2>(gamma / (beta * dt) * u - (gamma / beta - 1.0) * v -
+                    dt * (gamma / (2.0 * beta) - 1.0) * a);
     };
     EXPECT_LT(v_end(newmark_stop_displacement<2>(v, a, dt, beta, gamma)).norm(), 1e-12) << beta;
     if (beta == 0.25) {  // u = 0 reverses v (the trapezoidal rule's a^n term vanishes)
@@ -118,8 +119,8 @@ TEST(OneSidedFeet, StopDisplacementEndsANewmarkStepAtRest) {
   const double rest[2] = {0.004, 0.0};
   const double u[4] = {0.002, 0.0, (0.004 - 0.3 * 0.002) / 0.7, 0.0};
   double r[4] = {0, 0, 0, 0};
-  add_foot_penalty<2>(W, /*normal_axis=*/1, /*outward=*/-1.0, /*gap=*/0.0, /*no_slip=*/true, 1e6, u, r, nullptr,
-                      rest);
+  add_foot_penalty<2>(W, /*normal_axis=*/1, /*outward=*/-1.0, /*gap=*/0.0, /*no_slip=*/true, 1e6, u, r,
+                      nullptr, rest);
   EXPECT_NEAR(r[0], 0.0, 1e-9);
   EXPECT_NEAR(r[2], 0.0, 1e-9);
 }

@@ -188,8 +188,9 @@ TEST_F(GmmRun, NoSlipFloorStopsALandingSlideInsteadOfReversingIt) {
       for (const auto& v : solver.sim().particles.v) sum += v[0];
       mean_slide.push_back(sum / static_cast<double>(solver.sim().particles.v.size()));
     }
-    std::printf("GMM-%s landing slide: mean v_x after the landing step %.2e / %.2e m/s at E = 1e10 / 1e12 Pa\n",
-                basis, mean_slide[0], mean_slide[1]);
+    std::printf(
+        "GMM-%s landing slide: mean v_x after the landing step %.2e / %.2e m/s at E = 1e10 / 1e12 Pa\n",
+        basis, mean_slide[0], mean_slide[1]);
     EXPECT_GT(mean_slide[0], 0.0) << basis;  // not reversed
     EXPECT_LT(std::abs(mean_slide[1]), 1e-3 * v0) << basis;
     EXPECT_LT(std::abs(mean_slide[1]), std::abs(mean_slide[0]) / 30.0) << basis;  // ~1/E: 1/100

@@ -36,6 +36,15 @@ std::vector<int> colour_blocks(Index dof_count, std::span<const Index> offsets, 
 
 void SparseAssembly::build(Index dof_count, std::span<const Index> block_offsets,
                            std::span<const Index> block_dofs, std::span<const char> dirichlet) {
+  std::vector<char> flags(static_cast<std::size_t>(dof_count), 0);
+  std::copy_n(dirichlet.begin(), std::min(dirichlet.size(), flags.size()), flags.begin());
+  // The same blocks and Dirichlet dofs as the present pattern (a meshfree body whose clouds did
+  // not change over the step, an active set that stayed): keep it, and its version, so that the
+  // linear solver keeps its symbolic analysis too.
+  if (version_ != 0 && dof_count == dofs_ && std::ranges::equal(block_offsets, offsets_) &&
+      std::ranges::equal(block_dofs, dofs_list_) && flags == dirichlet_flags_)
+    return;
+  dirichlet_flags_ = std::move(flags);
   dofs_ = dof_count;
   offsets_.assign(block_offsets.begin(), block_offsets.end());
   dofs_list_.assign(block_dofs.begin(), block_dofs.end());

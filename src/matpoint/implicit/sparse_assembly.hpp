@@ -2,8 +2,9 @@
 // formulation (Aulisa & Capodaglio's particle Newmark, Iaconeta's grid Newmark and the FEM coupling
 // all assemble through it). A "block" is one element contribution: its list of global dofs and a
 // kernel that fills its dense residual and Jacobian.
-//   - The pattern is built once per active set (build()), with a per-block map from local entries
-//     to value slots of the compressed matrix, so every Newton iteration only refills values.
+//   - The pattern is built once per active set (build(); the same blocks again keep it), with a
+//     per-block map from local entries to value slots of the compressed matrix, so every Newton
+//     iteration only refills values.
 //   - Blocks are coloured so that blocks of one colour share no dof; each colour is assembled in
 //     parallel (OpenMP) straight into the matrix. The sum into each slot runs in colour order, so
 //     the result does not depend on the thread count (deterministic).
@@ -27,7 +28,8 @@ class SparseAssembly {
  public:
   /// The pattern of dof_count dofs with the blocks: block k's dofs are
   /// block_dofs[block_offsets[k] .. block_offsets[k + 1]). Every dof gets a diagonal entry.
-  /// dirichlet: one flag per dof (may be empty).
+  /// dirichlet: one flag per dof (may be empty). The same blocks and flags as the last build keep
+  /// its pattern and pattern_version().
   void build(Index dof_count, std::span<const Index> block_offsets, std::span<const Index> block_dofs,
              std::span<const char> dirichlet);
 
@@ -61,6 +63,7 @@ class SparseAssembly {
   std::vector<int> slots_;
   std::vector<Index> colour_order_, colour_begin_;  // blocks sorted by colour
   std::vector<Index> dirichlet_dofs_;
+  std::vector<char> dirichlet_flags_;  // build()'s flags, one per dof
   std::vector<int> dirichlet_row_slots_, dirichlet_diagonal_slots_;
   int max_block_ = 0;
   SparseMatrix pattern_;
