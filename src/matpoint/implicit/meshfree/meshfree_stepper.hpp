@@ -35,8 +35,8 @@
 // One-sided walls (implicit/one_sided_boundary.hpp): the feet of the points near the body's surface
 // that reach a wall are held by penalties on the point's cloud (assembled with the point's block),
 // u(x_f) = sum_J W_J du_J with W_J = N_J(x_p) + grad N_J(x_p) . (x_f - x_p) (the foot moves with
-// its point), and the step is
-// solved again while the contact set changes, as in the MPM stepper; the walls hold no node.
+// its point), and the step is solved again while the contact set changes, as in the MPM stepper;
+// the walls hold no node.
 // No-slip walls hold a foot's tangential displacement at the one that brings it to rest
 // (newmark_stop_displacement from the foot's nodal v, a), not at zero: a foot that lands during the
 // step was still sliding at its start, and u_t = 0 over a trapezoidal step ends it with its tangential
@@ -474,7 +474,7 @@ class MeshfreeStepper {
       s += foot.W[J] * du[static_cast<Index>(stencils_.node[k]) * D + i];
     return s;
   }
-  /// A foot's penalty block on its point's cloud (dofs node-major): add_foot_penalty.
+  /// A foot's penalty on its point's cloud (dofs node-major, added to the point's block): add_foot_penalty.
   static void foot_residual(const MeshfreeFoot& foot, const double* u, double* r, double* K) {
     add_foot_penalty<D>(foot.W, foot.normal_axis, foot.outward, foot.gap, foot.no_slip, foot.stiffness, u, r,
                         K, foot.tangential_rest.data());
