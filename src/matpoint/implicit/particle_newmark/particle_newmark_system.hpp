@@ -2,12 +2,14 @@
 // eqs. (26)-(28), (32)): unknowns u~ at every mesh node (node-major: dof = node * D + component),
 // blocks
 //   - one per active element: the particles' residual (20)-(25) plus the soft stiffness (26) when
-//     C_E > 0, Jacobian by forward-mode AD (ad_jacobian.hpp);
+//     C_E > 0, Jacobian by forward-mode AD (ad_jacobian.hpp), plus the penalty of each particle foot
+//     of the element in contact with a one-sided wall (one_sided_boundary.hpp): (k/2) (g + u~(x_f) .
+//     (-n))^2, and (k/2) |P_t u~(x_f)|^2 on a no-slip wall, u~(x_f) = sum_J W_J u~_J on the
+//     particle's host element; linear. A foot acts on exactly its host element's dofs, so it joins
+//     that block: the sparse pattern, and the solver's symbolic analysis, stay those of the active
+//     set while the contact set changes (as blocks of their own, every change rebuilt them);
 //   - one per loaded boundary face of an active element: the surface load (surface_load.hpp), its
 //     load stiffness by AD for a follower pressure;
-//   - one per particle foot in contact with a one-sided wall (one_sided_boundary.hpp): the penalty
-//     (k/2) (g + u~(x_f) . (-n))^2, and (k/2) |P_t u~(x_f)|^2 on a no-slip wall, u~(x_f) =
-//     sum_J W_J u~_J on the particle's host element; linear;
 //   - one per dof of the nodes in I_ib: the lumped-mass equation (27) summed over the node's inactive
 //     elements (linear and diagonal, so the Jacobian is the node mass itself);
 // assembled by the generic SparseAssembly; Dirichlet dofs are identity rows. Fixed during the
@@ -17,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "matpoint/implicit/active_set.hpp"
@@ -93,18 +96,19 @@ class ParticleNewmarkSystem {
  private:
   template <class S>
   void active_residual(Index k, const S* u, S* r) const;
-  /// A foot's block (dofs node-major, as an element's): one_sided_boundary.hpp's add_foot_penalty.
-  static void add_foot(const FootBlock<E>& foot, std::span<const Index> dofs, const Eigen::VectorXd& u,
-                       double* r, double* K) {
-    std::array<double, kDofs> u_local;
-    for (int i = 0; i < kDofs; ++i)
-      u_local[static_cast<std::size_t>(i)] = u[dofs[static_cast<std::size_t>(i)]];
+  /// A foot's penalty added to its host element's block (u_e, r, K over the element's dofs,
+  /// node-major): one_sided_boundary.hpp's add_foot_penalty.
+  static void add_foot(const FootBlock<E>& foot, const double* u_e, double* r, double* K) {
     add_foot_penalty<kDim>(std::span<const double>(foot.W.data(), kNodes), foot.normal_axis, foot.outward,
-                           foot.gap, foot.no_slip, foot.stiffness, u_local.data(), r, K);
+                           foot.gap, foot.no_slip, foot.stiffness, u_e, r, K);
   }
+  /// Sorts data_.feet by host element and sets first_foot_: active element k's feet are
+  /// data_.feet[first_foot_[k] .. first_foot_[k + 1]).
+  void index_feet_by_element();
 
   StepData data_;
   Index active_ = 0;
+  std::vector<std::size_t> first_foot_;  // data_.feet by active element (index_feet_by_element)
   /// The external nodal forces of `loads` (parallel to loads_'s faces) at u, node-major.
   [[nodiscard]] Eigen::VectorXd surface_load_forces(const std::vector<FaceLoad<kDim>>& loads,
                                                     const Eigen::VectorXd& u) const;
@@ -163,12 +167,7 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
     load_nodes_.push_back(x);
     load_dofs_.push_back(face_dofs);
   }
-  // Feet: every dof of the host element (node-major, as an element block).
-  for (const FootBlock<E>& foot : data_.feet) {
-    for (const Index node : mesh.element_nodes(foot.element))
-      for (int i = 0; i < kDim; ++i) dofs.push_back(node * kDim + i);
-    offsets.push_back(static_cast<Index>(dofs.size()));
-  }
+  index_feet_by_element();  // the feet join their host elements' blocks
   // Inactive elements: the mass equations (27) of their I_ib nodes, summed per node (a row-sum
   // lumped mass), one 1 x 1 block per dof: the pattern of these rows is the diagonal alone (blocks
   // over an element's nodes would add their structural zeros to the factorisation).
@@ -198,6 +197,22 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
   offsets_ = std::move(offsets);
   dofs_ = std::move(dofs);
   dirichlet_.assign(data_.dirichlet.begin(), data_.dirichlet.end());
+}
+
+template <class E, class Material>
+void ParticleNewmarkSystem<E, Material>::index_feet_by_element() {
+  auto& feet = data_.feet;
+  std::stable_sort(feet.begin(), feet.end(),
+                   [](const FootBlock<E>& a, const FootBlock<E>& b) { return a.element < b.element; });
+  const std::vector<Index>& active = data_.set->active_elements;  // ascending
+  first_foot_.assign(static_cast<std::size_t>(active_) + 1, 0);
+  for (const FootBlock<E>& foot : feet) {
+    const auto k = std::lower_bound(active.begin(), active.end(), foot.element) - active.begin();
+    if (k == static_cast<std::ptrdiff_t>(active.size()) || active[static_cast<std::size_t>(k)] != foot.element)
+      throw std::logic_error("ParticleNewmarkSystem: a foot's host element is not active");
+    ++first_foot_[static_cast<std::size_t>(k) + 1];
+  }
+  for (std::size_t k = 0; k < active.size(); ++k) first_foot_[k + 1] += first_foot_[k];
 }
 
 template <class E, class Material>
@@ -261,6 +276,9 @@ bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eige
             element_residual_and_jacobian(b, u_e.data(), r, k);
           else
             element_residual(b, u_e.data(), r);
+          for (std::size_t f = first_foot_[static_cast<std::size_t>(b)]; f < first_foot_[static_cast<std::size_t>(b) + 1];
+               ++f)
+            add_foot(data_.feet[f], u_e.data(), r, k);
           return;
         }
         const auto face_count = static_cast<Index>(loads_.size());
@@ -278,13 +296,8 @@ bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eige
             residual_only<kFaceDofs>(u_f.data(), residual, r);
           return;
         }
-        const auto foot_count = static_cast<Index>(data_.feet.size());
-        if (b < active_ + face_count + foot_count) {
-          add_foot(data_.feet[static_cast<std::size_t>(b - active_ - face_count)], dofs, u, r, k);
-          return;
-        }
         // (27): r = m u for one dof of an I_ib node, dr/du = m.
-        const double m = mass_dof_[static_cast<std::size_t>(b - active_ - face_count - foot_count)];
+        const double m = mass_dof_[static_cast<std::size_t>(b - active_ - face_count)];
         r[0] = m * u[dofs[0]];
         if (k != nullptr) k[0] = m;
       },
