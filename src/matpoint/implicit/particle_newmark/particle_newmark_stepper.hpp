@@ -157,6 +157,7 @@ class ParticleNewmarkStepper {
     for (std::size_t n = 0; n < reference_.size(); ++n) reference_[n] = mesh_.nodes[n] + fe_.displacement[n];
     extension_->apply(fe_.displacement, reference_);
     locator_.update(reference_);
+    ++reference_version_;
   }
   /// The nodal u~ of the last completed step (node-major, D per node; empty before the first).
   [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
@@ -299,6 +300,7 @@ class ParticleNewmarkStepper {
   std::vector<char> dirichlet_;
   std::map<std::pair<Index, int>, double> receding_;
   std::vector<Vec<D>> reference_;  // x~ (eq. (2)): where the particles are located and gradients taken
+  std::uint64_t reference_version_ = 0;  // raised whenever reference_ moves (FE bodies)
   mesh::PointLocator<D> locator_;
   std::unique_ptr<LinearSolver> solver_;
   ActiveSet set_;
@@ -423,6 +425,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   data.mesh = &mesh_;
   data.reference_nodes =
       options_.small_strain ? std::span<const Vec<D>>(mesh_.nodes) : std::span<const Vec<D>>(reference_);
+  data.reference_version = options_.small_strain ? 0 : reference_version_;
   data.set = &set_;
   data.quadrature = &q_;
   data.materials = materials_;
@@ -460,11 +463,13 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
   }
   Eigen::VectorXd u;
   for (;;) {  // one solve, or one per change of the one-sided walls' contact set
-    using StepData = typename ParticleNewmarkSystem<E, Material>::StepData;
-    StepData round = one_sided_.empty() ? std::move(data) : StepData(data);  // rounds > 1 re-use data
-    round.dirichlet = dirichlet_;
-    if (!one_sided_.empty()) round.feet = feet_in_contact();
-    system_.setup(std::move(round));
+    if (report.solves == 0) {
+      data.dirichlet = dirichlet_;
+      if (!one_sided_.empty()) data.feet = feet_in_contact();
+      system_.setup(std::move(data));
+    } else {  // only the feet changed: the blocks, their geometry and the pattern stay
+      system_.set_feet(feet_in_contact());
+    }
     // u~ = 0 (§6) but at moving Dirichlet dofs, which keep their value (identity rows, zero residual).
     // A re-solve after the contact set changed starts from the last round's solution instead, which
     // differs from the new one only near the feet that changed.
@@ -487,6 +492,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
       fe_.commit_nodes(u, options_.newmark, dt, options_.static_analysis, mesh_.nodes, reference_);
       extension_->apply(fe_.displacement, reference_);  // the background's new x~ (8b)
       locator_.update(reference_);
+      ++reference_version_;
     }
     last_increment_ = std::move(u);
   }

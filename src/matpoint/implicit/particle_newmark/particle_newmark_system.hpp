@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -61,6 +62,7 @@ class ParticleNewmarkSystem {
   struct StepData {
     const mesh::Mesh<kDim>* mesh = nullptr;
     std::span<const Vec<kDim>> reference_nodes;  // x~ (the mesh's nodes in the uncoupled case)
+    std::uint64_t reference_version = 0;         // changes whenever reference_nodes move
     const ActiveSet* set = nullptr;
     const ParticleQuadrature<E>* quadrature = nullptr;
     std::span<const Material> materials;
@@ -77,6 +79,13 @@ class ParticleNewmarkSystem {
   /// Builds the blocks, and the sparse pattern when they differ from the last call's (a new active
   /// set); the pattern version, hence the solver's symbolic analysis, survives otherwise.
   void setup(StepData data);
+
+  /// Another contact set for the same step (a re-solve round): only the feet change. They live in
+  /// their host elements' blocks, so the blocks, their geometry and the pattern all stay.
+  void set_feet(std::vector<FootBlock<E>> feet) {
+    data_.feet = std::move(feet);
+    index_feet_by_element();
+  }
 
   /// R(u~) and, when K is not null, the Jacobian; Dirichlet rows as identity with zero residual
   /// unless `constrain` is false (then R holds the reactions there: the force the condition exerts).
@@ -106,8 +115,36 @@ class ParticleNewmarkSystem {
   /// data_.feet[first_foot_[k] .. first_foot_[k + 1]).
   void index_feet_by_element();
 
+  /// Element e's lumped node masses per unit density on reference_nodes (the inactive elements'
+  /// equations (27)), computed once per element and kept while reference_version stays: on a fixed
+  /// background mesh, once per run (recomputing them every step for every empty element of the
+  /// mesh was a tenth of a rolling-disk run).
+  const Eigen::Matrix<double, kNodes, 1>& element_lumped_mass(Index e) {
+    const auto count = static_cast<std::size_t>(data_.mesh->element_count());
+    if (lumped_mass_version_ != data_.reference_version || lumped_mass_.size() != count ||
+        lumped_mass_nodes_ != data_.reference_nodes.data() || lumped_mass_gauss_ != data_.gauss_points_per_direction) {
+      lumped_mass_.assign(count, Eigen::Matrix<double, kNodes, 1>::Zero());
+      lumped_mass_known_.assign(count, 0);
+      lumped_mass_version_ = data_.reference_version;
+      lumped_mass_nodes_ = data_.reference_nodes.data();
+      lumped_mass_gauss_ = data_.gauss_points_per_direction;
+    }
+    const auto k = static_cast<std::size_t>(e);
+    if (!lumped_mass_known_[k]) {
+      lumped_mass_[k] = lumped_node_masses<E>(gauss_geometry<E>(
+          gather_nodes<E>(data_.reference_nodes, data_.mesh->element_nodes(e)), data_.gauss_points_per_direction));
+      lumped_mass_known_[k] = 1;
+    }
+    return lumped_mass_[k];
+  }
+
   StepData data_;
   Index active_ = 0;
+  std::vector<Eigen::Matrix<double, kNodes, 1>> lumped_mass_;  // element_lumped_mass's cache
+  std::vector<char> lumped_mass_known_;
+  std::uint64_t lumped_mass_version_ = 0;  // the key of the cache: version, nodes, Gauss rule
+  const Vec<kDim>* lumped_mass_nodes_ = nullptr;
+  int lumped_mass_gauss_ = 0;
   std::vector<std::size_t> first_foot_;  // data_.feet by active element (index_feet_by_element)
   /// The external nodal forces of `loads` (parallel to loads_'s faces) at u, node-major.
   [[nodiscard]] Eigen::VectorXd surface_load_forces(const std::vector<FaceLoad<kDim>>& loads,
@@ -174,8 +211,7 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
   std::vector<double> node_mass(static_cast<std::size_t>(mesh.node_count()), 0.0);
   for (const Index e : set.inactive_elements) {
     const auto nodes = mesh.element_nodes(e);
-    const auto m = lumped_node_masses<E>(
-        gauss_geometry<E>(gather_nodes<E>(data_.reference_nodes, nodes), data_.gauss_points_per_direction));
+    const auto& m = element_lumped_mass(e);
     for (int I = 0; I < kNodes; ++I)
       node_mass[static_cast<std::size_t>(nodes[static_cast<std::size_t>(I)])] += m[I];
   }
