@@ -299,7 +299,7 @@ class ParticleNewmarkStepper {
   ParticleNewmarkOptions<D> options_;
   std::vector<char> dirichlet_;
   std::map<std::pair<Index, int>, double> receding_;
-  std::vector<Vec<D>> reference_;  // x~ (eq. (2)): where the particles are located and gradients taken
+  std::vector<Vec<D>> reference_;        // x~ (eq. (2)): where the particles are located and gradients taken
   std::uint64_t reference_version_ = 0;  // raised whenever reference_ moves (FE bodies)
   mesh::PointLocator<D> locator_;
   std::unique_ptr<LinearSolver> solver_;

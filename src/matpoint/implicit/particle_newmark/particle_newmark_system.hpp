@@ -122,7 +122,8 @@ class ParticleNewmarkSystem {
   const Eigen::Matrix<double, kNodes, 1>& element_lumped_mass(Index e) {
     const auto count = static_cast<std::size_t>(data_.mesh->element_count());
     if (lumped_mass_version_ != data_.reference_version || lumped_mass_.size() != count ||
-        lumped_mass_nodes_ != data_.reference_nodes.data() || lumped_mass_gauss_ != data_.gauss_points_per_direction) {
+        lumped_mass_nodes_ != data_.reference_nodes.data() ||
+        lumped_mass_gauss_ != data_.gauss_points_per_direction) {
       lumped_mass_.assign(count, Eigen::Matrix<double, kNodes, 1>::Zero());
       lumped_mass_known_.assign(count, 0);
       lumped_mass_version_ = data_.reference_version;
@@ -131,8 +132,9 @@ class ParticleNewmarkSystem {
     }
     const auto k = static_cast<std::size_t>(e);
     if (!lumped_mass_known_[k]) {
-      lumped_mass_[k] = lumped_node_masses<E>(gauss_geometry<E>(
-          gather_nodes<E>(data_.reference_nodes, data_.mesh->element_nodes(e)), data_.gauss_points_per_direction));
+      lumped_mass_[k] = lumped_node_masses<E>(
+          gauss_geometry<E>(gather_nodes<E>(data_.reference_nodes, data_.mesh->element_nodes(e)),
+                            data_.gauss_points_per_direction));
       lumped_mass_known_[k] = 1;
     }
     return lumped_mass_[k];
@@ -244,7 +246,8 @@ void ParticleNewmarkSystem<E, Material>::index_feet_by_element() {
   first_foot_.assign(static_cast<std::size_t>(active_) + 1, 0);
   for (const FootBlock<E>& foot : feet) {
     const auto k = std::lower_bound(active.begin(), active.end(), foot.element) - active.begin();
-    if (k == static_cast<std::ptrdiff_t>(active.size()) || active[static_cast<std::size_t>(k)] != foot.element)
+    if (k == static_cast<std::ptrdiff_t>(active.size()) ||
+        active[static_cast<std::size_t>(k)] != foot.element)
       throw std::logic_error("ParticleNewmarkSystem: a foot's host element is not active");
     ++first_foot_[static_cast<std::size_t>(k) + 1];
   }
@@ -312,8 +315,8 @@ bool ParticleNewmarkSystem<E, Material>::assemble(const Eigen::VectorXd& u, Eige
             element_residual_and_jacobian(b, u_e.data(), r, k);
           else
             element_residual(b, u_e.data(), r);
-          for (std::size_t f = first_foot_[static_cast<std::size_t>(b)]; f < first_foot_[static_cast<std::size_t>(b) + 1];
-               ++f)
+          for (std::size_t f = first_foot_[static_cast<std::size_t>(b)];
+               f < first_foot_[static_cast<std::size_t>(b) + 1]; ++f)
             add_foot(data_.feet[f], u_e.data(), r, k);
           return;
         }
