@@ -213,7 +213,7 @@ class ParticleNewmarkStepper {
     }
     return out;
   }
-  /// The one-sided walls' candidate feet as blocks on their particles' host elements: the foot
+  /// The one-sided walls' candidate feet on their particles' host elements: the foot
   /// moves with its particle, x_f = x_p + F_p r_p, so over the step u~(x_f) = u~(x_p) + grad~ u~(x_p)
   /// d with d = x_f - x_p: weights W_J = N_J(x_p) + grad~ N_J(x_p) . d (exact for the particle's
   /// affine motion; the foot itself may lie in an element without material, where the field is
@@ -239,7 +239,7 @@ class ParticleNewmarkStepper {
       feet_.push_back(foot);
     }
   }
-  /// The blocks of the feet in contact this round.
+  /// The feet in contact this round (added to their host elements' blocks by the system).
   std::vector<FootBlock<E>> feet_in_contact() const {
     std::vector<FootBlock<E>> out;
     for (std::size_t c = 0; c < feet_.size(); ++c)
@@ -314,7 +314,7 @@ class ParticleNewmarkStepper {
   std::vector<FaceLoad<D>> loads_end_, loads_start_;
   Vec<D> gravity_at_start_ = options_.gravity;  // b^n: the body force of the previous step (defect work)
   OneSidedBoundary<D> one_sided_;
-  std::vector<FootBlock<E>> feet_;  // per one-sided candidate: its foot's block
+  std::vector<FootBlock<E>> feet_;  // per one-sided candidate: its foot's penalty data
   fem::FeBodies<E> fe_;
   std::optional<fem::ResetExtension<E>> extension_;  // with FE bodies: the background's x~ (8b)
 };
