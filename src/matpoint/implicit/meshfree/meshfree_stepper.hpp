@@ -185,8 +185,7 @@ class MeshfreeStepper {
         index_feet_by_point();
       }
       // A re-solve after the contact set changed starts from the last round's solution.
-      if (solves == 1 || du.size() != body.dofs() + multiplier_dofs())
-        du = Eigen::VectorXd::Zero(body.dofs() + multiplier_dofs());
+      if (solves == 1) du = Eigen::VectorXd::Zero(body.dofs() + multiplier_dofs());
       non_finite_point_ = -1;
       result = newton_solve(assemble, assembly_.pattern_version(), *solver_, du, options_.newton);
       round_off_stops_ += result.round_off_stop ? 1 : 0;

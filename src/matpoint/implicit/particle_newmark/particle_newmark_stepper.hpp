@@ -473,7 +473,7 @@ StepReport ParticleNewmarkStepper<E, Material>::step(ParticleSet<D>& particles,
     // u~ = 0 (§6) but at moving Dirichlet dofs, which keep their value (identity rows, zero residual).
     // A re-solve after the contact set changed starts from the last round's solution instead, which
     // differs from the new one only near the feet that changed.
-    if (report.solves == 0 || u.size() != system_.dof_count()) u = Eigen::VectorXd::Zero(system_.dof_count());
+    if (report.solves == 0) u = Eigen::VectorXd::Zero(system_.dof_count());
     for (const auto& [dof, value] : prescribed_) u[dof] = value;
     report.newton =
         newton_solve(timed_assembly, system_.assembly().pattern_version(), *solver_, u, options_.newton);

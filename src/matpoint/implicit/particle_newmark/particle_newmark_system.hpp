@@ -159,8 +159,6 @@ class ParticleNewmarkSystem {
   std::vector<GaussGeometry<E>> soft_geometry_;          // per active element with soft stiffness
   std::vector<double> mass_dof_;                         // per inactive-node block (one dof): its lumped mass
   SparseAssembly assembly_;
-  std::vector<Index> offsets_, dofs_;  // the blocks of the current pattern
-  std::vector<char> dirichlet_;
 };
 
 template <class E, class Material>
@@ -225,16 +223,9 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
         offsets.push_back(static_cast<Index>(dofs.size()));
         mass_dof_.push_back(node_mass[static_cast<std::size_t>(node)]);
       }
-  // The same blocks and Dirichlet dofs as the last step: keep the pattern (and with it the linear
-  // solver's symbolic analysis, keyed on pattern_version()).
-  const bool same =
-      offsets == offsets_ && dofs == dofs_ &&
-      std::equal(data_.dirichlet.begin(), data_.dirichlet.end(), dirichlet_.begin(), dirichlet_.end());
-  if (same) return;
+  // SparseAssembly keeps the pattern, and its version (hence the solver's symbolic analysis), when
+  // the blocks and Dirichlet dofs are the last step's.
   assembly_.build(mesh.node_count() * kDim, offsets, dofs, data_.dirichlet);
-  offsets_ = std::move(offsets);
-  dofs_ = std::move(dofs);
-  dirichlet_.assign(data_.dirichlet.begin(), data_.dirichlet.end());
 }
 
 template <class E, class Material>
