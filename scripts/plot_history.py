@@ -134,12 +134,17 @@ def plot_newton(h, title, plots, units):
     if not rows:
         return
     time = [h["time"][k] for k in rows]
+    # A row holds the iterations of every step since the previous row (docs/output.md): per step,
+    # they are divided by that count (1 when every step is recorded).
+    per_step = [
+        h["newton_iterations"][k] / max(h["step"][k] - (h["step"][k - 1] if k > 0 else 0), 1) for k in rows
+    ]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
-    top.step(time, [h["newton_iterations"][k] for k in rows], where="post", label="Newton iterations")
-    cuts = [(t, h["newton_iterations"][k]) for t, k in zip(time, rows) if h["step_cuts"][k] > 0]
+    top.step(time, per_step, where="post", label="Newton iterations")
+    cuts = [(t, n) for t, k, n in zip(time, rows, per_step) if h["step_cuts"][k] > 0]
     if cuts:
         top.plot(*zip(*cuts), "rv", label="step cut")
-    top.set_ylabel("iterations per step")
+    top.set_ylabel("iterations per step\n(mean since the previous row)")
     twin = top.twinx()
     twin.semilogy(time, [max(h["newton_residual"][k], 1e-300) for k in rows], "k:", label="final |R|")
     twin.set_ylabel("final residual norm")
