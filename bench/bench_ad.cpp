@@ -36,7 +36,7 @@ Element make_element() {
       const Vec<2> xi(-0.7 + 0.65 * a, -0.6 + 0.6 * b);
       Mat<2> F;
       F << 1.02, 0.01 * a, -0.02 * b, 0.99;
-      e.q.add(0, xi, x, 0.1, 1e-4, 0, F, Vec<2>(0.3, -9.81), 0);
+      e.q.add(0, xi, x, 0, 0.1, 1e-4, 0, F, Vec<2>(0.3, -9.81), 0);
     }
   e.q.close_block();
   for (int i = 0; i < kDofs; ++i) e.u[static_cast<std::size_t>(i)] = 1e-3 * std::sin(1.7 * i + 0.3);

@@ -48,7 +48,7 @@ struct Block {
       const auto X = gather_nodes<Q9>(mesh.nodes, mesh.element_nodes(e));
       for (std::size_t g = 0; g < rule.points.size(); ++g) {
         const double w = rule.weights[g] * (X.transpose() * Q9::gradients(rule.points[g])).determinant();
-        q.add(0, rule.points[g], X, 1000.0 * w, w, 0, Mat<2>::Identity(), Vec<2>(0.0, 9.81), 0);
+        q.add(0, rule.points[g], X, 0, 1000.0 * w, w, 0, Mat<2>::Identity(), Vec<2>(0.0, 9.81), 0);
       }
       q.close_block();
     }

@@ -109,7 +109,8 @@ void check_particles_at_gauss_points_reproduce_fem() {
   ParticleQuadrature<E> q;
   for (std::size_t g = 0; g < rule.points.size(); ++g) {
     const double w = rule.weights[g] * (X.transpose() * E::gradients(rule.points[g])).determinant();
-    q.add(static_cast<Index>(g), rule.points[g], X, kRho0 * w, w, 0, Mat<D>::Identity(), known_term<D>(), 0);
+    q.add(static_cast<Index>(g), rule.points[g], X, 0, kRho0 * w, w, 0, Mat<D>::Identity(), known_term<D>(),
+          0);
   }
   q.close_block();
   const auto u = displacement<E>(0.03);
@@ -153,12 +154,12 @@ void check_ad_jacobian_matches_differences(bool receding_in_gradient) {
     const Vec<2> xi(-0.8 + 0.19 * p, 0.7 - 0.17 * p);
     Mat<2> Fn;
     Fn << 1.05, 0.02 * p, -0.03, 0.97;
-    q.add(p, xi, X, 0.02, 2e-5, 0, Fn, Vec<2>(0.4, -9.0), p % 2 == 0 ? 0b1001u : 0u);
+    q.add(p, xi, X, 0, 0.02, 2e-5, 0, Fn, Vec<2>(0.4, -9.0), p % 2 == 0 ? 0b1001u : 0u);
   }
   q.close_block();
   const FaceCoefficients<E> receding{0.5, 0.0, 0.0, 0.3};
   const ParticleResidualOptions options{kInertia, receding_in_gradient};
-  const GaussGeometry<E> soft = gauss_geometry<E>(X, 3);
+  const GaussGeometry<E> soft = gauss_geometry<E>(X, 3, 0);
   const double mu_ce = kMaterial.mu * 1e-2;
   const auto residual = [&](const auto* us, auto* rs) {
     add_particle_residual<E>(q, 0, 9, &kMaterial, receding, options, us, rs);
@@ -205,11 +206,11 @@ TEST(ImplicitResidual, AdJacobianMatchesCentralDifferencesHex8) {
     const Vec<3> xi(-0.7 + 0.2 * p, 0.6 - 0.15 * p, 0.1 * p - 0.3);
     Mat<3> Fn = Mat<3>::Identity();
     Fn(0, 1) = 0.02 * p, Fn(2, 0) = -0.03, Fn(1, 1) = 0.97;
-    q.add(p, xi, X, 0.02, 2e-5, 0, Fn, Vec<3>(0.4, 0.1, -9.0), 0);
+    q.add(p, xi, X, 0, 0.02, 2e-5, 0, Fn, Vec<3>(0.4, 0.1, -9.0), 0);
   }
   q.close_block();
   const ParticleResidualOptions options{kInertia, true};
-  const GaussGeometry<E> soft = gauss_geometry<E>(X, 3);
+  const GaussGeometry<E> soft = gauss_geometry<E>(X, 3, 0);
   const FaceCoefficients<E> none{};
   const auto residual = [&](const auto* us, auto* rs) {
     add_particle_residual<E>(q, 0, 8, &kMaterial, none, options, us, rs);
@@ -280,7 +281,7 @@ TEST(ImplicitResidual, LumpedNodeMassesOfQ9AreTheRowSums) {
   using E = mesh::Q9;
   NodeMatrix<E> x = E::reference_nodes();
   x.col(0) *= 1.5;  // 3 x 2 rectangle, A = 6
-  const auto m = lumped_node_masses<E>(gauss_geometry<E>(x, 3));
+  const auto m = lumped_node_masses<E>(gauss_geometry<E>(x, 3, 0));
   const double A = 6.0;
   for (int I = 0; I < 4; ++I) EXPECT_NEAR(m[I], A / 36.0, 1e-13);
   for (int I = 4; I < 8; ++I) EXPECT_NEAR(m[I], A / 9.0, 1e-13);

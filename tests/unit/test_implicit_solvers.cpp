@@ -151,7 +151,7 @@ struct Patch {
         // Old velocity upwards: moving away from the clamped bottom (receding switch of A4).
         const Vec<2> v_old(0.0, 0.1), b(0.5 * body_force, -body_force);
         const auto bits = receding ? receding_switches<Q9>(X, {0.5, 0.0, 0.0, 0.0}, v_old) : 0u;
-        q.add(0, rule.points[g], X, 1000.0 * w, w, 0, Mat<2>::Identity(),
+        q.add(0, rule.points[g], X, 0, 1000.0 * w, w, 0, Mat<2>::Identity(),
               c.known<2>(v_old, Vec<2>::Zero()) - b, bits);
       }
       q.close_block();

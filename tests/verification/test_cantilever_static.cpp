@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "matpoint/implicit/implicit_mpm_solver.hpp"
+#include "matpoint/mesh/point_locator.hpp"
 #include "matpoint/mesh/structured_mesh.hpp"
 #include "test_support.hpp"
 
@@ -27,27 +28,34 @@ constexpr double kPaperReference = 0.67433;  // Iaconeta 2017 §5.1, finest mesh
 
 /// Point A's vertical displacement with cells of size h (one static load step); `small`: the
 /// geometrically linear variant (solver.implicit.kinematics "small"); `newton`: the solve's history.
-/// E = Q4 with 2 x 2 material points per cell at its Gauss points (the paper), or Q9 with 3 x 3.
+/// E = Q4 with 2 x 2 material points per cell at its Gauss points (the paper), Q9 with 3 x 3, or
+/// the C1 B-spline patch (BSpline2) with 2 x 2, whose Point A is the field at (8, 0.5), not a node.
 template <class E = mesh::Q4>
 double point_a_deflection(double h, bool small = false, implicit::NewtonResult* newton = nullptr) {
   Spec spec = test::load_example("cantilever-static");
   spec.solver.implicit.small_strain = small;
   const int nx = static_cast<int>(std::lround(8.0 / h)), ny = static_cast<int>(std::lround(1.0 / h));
-  const int per_direction = E::kDegree + 1;
+  constexpr bool spline = E::kShape == mesh::ElementShape::BSpline2;
+  const int per_direction = spline ? 2 : E::kDegree + 1;
   spec.bodies[0].particles_per_cell = per_direction;
   spec.mesh.cells = {nx, ny, 1};
   spec.grid.cells = {nx, ny, 1};
   spec.grid.cell_size = {h, h, 1.0};
-  mesh::Mesh<2> background = mesh::structured_rectangle(E::kShape, mesh::AxisSpacing::uniform(0, 8, nx),
-                                                        mesh::AxisSpacing::uniform(0, 1, ny));
+  const auto x_axis = mesh::AxisSpacing::uniform(0, 8, nx), y_axis = mesh::AxisSpacing::uniform(0, 1, ny);
+  mesh::Mesh<2> background = spline ? mesh::structured_bspline2(x_axis, y_axis)
+                                    : mesh::structured_rectangle(E::kShape, x_axis, y_axis);
   implicit::ImplicitMpmSolver<E> solver(spec, background);
   EXPECT_EQ(solver.sim().particles.size(), static_cast<std::size_t>(per_direction * per_direction * nx * ny));
   solver.step(1.0);
-  Index end = 0;  // the node at (8, 0.5)
-  for (Index n = 0; n < solver.mesh().node_count(); ++n)
-    if ((solver.mesh().nodes[static_cast<std::size_t>(n)] - Vec<2>(8.0, 0.5)).norm() < 1e-9) end = n;
-  EXPECT_LT((solver.mesh().nodes[static_cast<std::size_t>(end)] - Vec<2>(8.0, 0.5)).norm(), 1e-9);
-  const double uy = solver.last_nodal_increment()[2 * end + 1];
+  const Eigen::VectorXd& u = solver.last_nodal_increment();
+  const mesh::PointLocator<2> locator(solver.mesh(), solver.mesh().nodes);
+  const auto at =
+      locator.locate(Vec<2>(8.0, 0.5));  // u_y(8, 0.5) = sum_I N_I u_I: the node's on Lagrange cells
+  EXPECT_TRUE(at.has_value());
+  const auto N = E::values(at->xi, solver.mesh().element_variant(at->element));
+  const auto ids = solver.mesh().element_nodes(at->element);
+  double uy = 0.0;
+  for (int I = 0; I < E::kNodes; ++I) uy += N[I] * u[2 * ids[static_cast<std::size_t>(I)] + 1];
   if (newton != nullptr) *newton = solver.last_newton();
   std::printf("cantilever %s h = %g: Point A u_y = %.6f m (%ld Newton iterations)\n", E::kName, h, uy,
               solver.totals().newton_iterations);
@@ -133,6 +141,30 @@ TEST(CantileverStatic, QuadraticQ9CellsConvergeFasterThanQ4) {
               std::abs(kPaperReference + q4_same_nodes));
   EXPECT_LT(std::abs(kPaperReference + q9_coarse), std::abs(kPaperReference + q4_same_nodes));
   EXPECT_LT(std::abs(kPaperReference + q9_fine), 4e-4);
+}
+
+// The same beam on the C1 quadratic B-spline background (mesh.element "bspline2", 2 x 2 material
+// points per cell: docs/theory/implicit.md, "A C1 background"). Reference: the continuum limit of the
+// independent Q4 FEM above, Richardson-extrapolated from h = 0.0625 and 0.03125 at order 2 (their
+// differences fall by 3.96 per halving there): 0.674035 + (0.674035 - 0.673046) / 3 = 0.6743647 m;
+// Aitken's three-point estimate from h = 0.125 .. 0.03125 gives 0.6743686 m, so the limit is known
+// to about 4e-6 m. Quadratic splines converge at O(h^3) in displacement (the L2 rate p + 1 of degree-p
+// splines: Bazilevs, Beirao da Veiga, Cottrell, Hughes & Sangalli 2006, M3AS 16), so each halving must cut
+// the change of Point A by at least 2^3 = 8, and h = 0.125 m must be within 1e-5 m of the limit
+// (the Q4 FEM needs h below 0.01 m for that, its error being 3.3e-4 m at h = 0.03125).
+TEST(CantileverStatic, BSplineBackgroundConvergesAtThirdOrderToTheContinuumLimit) {
+  const double limit = 0.674035 + (0.674035 - 0.673046) / 3.0;
+  const double h[] = {0.5, 0.25, 0.125, 0.0625};
+  double u[4];
+  for (int k = 0; k < 4; ++k) u[k] = point_a_deflection<mesh::BSpline2>(h[k]);
+  for (int k = 2; k < 4; ++k) {
+    const double ratio = (u[k - 2] - u[k - 1]) / (u[k - 1] - u[k]);
+    std::printf("bspline2: change %.3e -> %.3e, ratio %.2f (order %.2f)\n", std::abs(u[k - 2] - u[k - 1]),
+                std::abs(u[k - 1] - u[k]), ratio, std::log2(ratio));
+    EXPECT_GE(ratio, 8.0) << "h = " << h[k];
+  }
+  std::printf("bspline2: h = 0.125 against the limit %.7f: %.2e m\n", limit, std::abs(limit + u[2]));
+  EXPECT_LT(std::abs(limit + u[2]), 1e-5);
 }
 
 }  // namespace

@@ -70,8 +70,8 @@ class FeBodies {
   /// nodes at the step start, the known part of the acceleration from the nodal predictor, minus
   /// the body force where the body takes gravity. Gauss point g is stored as particle -1 - g.
   void add_quadrature(Index k, const implicit::NodeMatrix<E>& x_reference, std::span<const Index> nodes,
-                      const implicit::NewmarkCoefficients& c, bool static_analysis, const Vec<D>& gravity,
-                      implicit::ParticleQuadrature<E>& q) const;
+                      mesh::ElementVariant variant, const implicit::NewmarkCoefficients& c,
+                      bool static_analysis, const Vec<D>& gravity, implicit::ParticleQuadrature<E>& q) const;
 
   /// a^0 at the nodes consistent with the body force b at rest (A17's "body_force" option): M a = f
   /// holds with a_I = s b for an unstressed body (s = rho / rho_inertia, 0 without gravity).
@@ -135,7 +135,7 @@ FeBodies<E>::FeBodies(const mesh::Mesh<D>& mesh, const std::vector<FeBodyDefinit
       const auto X = implicit::gather_nodes<E>(mesh.nodes, element_nodes);
       for (std::size_t g = 0; g < rule.points.size(); ++g) {
         double det = 0.0;
-        implicit::physical_gradients<E>(X, rule.points[g], &det);
+        implicit::physical_gradients<E>(X, rule.points[g], mesh.element_variant(e), &det);
         const double v0 = rule.weights[g] * det;
         volume0.push_back(v0);
         mass.push_back(bodies[b].inertia_density * v0);
@@ -150,9 +150,9 @@ FeBodies<E>::FeBodies(const mesh::Mesh<D>& mesh, const std::vector<FeBodyDefinit
 
 template <class E>
 void FeBodies<E>::add_quadrature(Index k, const implicit::NodeMatrix<E>& x_reference,
-                                 std::span<const Index> nodes, const implicit::NewmarkCoefficients& c,
-                                 bool static_analysis, const Vec<D>& body_force,
-                                 implicit::ParticleQuadrature<E>& q) const {
+                                 std::span<const Index> nodes, mesh::ElementVariant variant,
+                                 const implicit::NewmarkCoefficients& c, bool static_analysis,
+                                 const Vec<D>& body_force, implicit::ParticleQuadrature<E>& q) const {
   const auto& rule = fe_gauss_rule<E>();
   const auto per = static_cast<Index>(rule.points.size());
   for (Index i = 0; i < per; ++i) {
@@ -161,14 +161,14 @@ void FeBodies<E>::add_quadrature(Index k, const implicit::NodeMatrix<E>& x_refer
     const Vec<D>& xi = rule.points[static_cast<std::size_t>(i)];
     Vec<D> known = Vec<D>::Zero();
     if (!static_analysis) {  // the nodal predictor (46) interpolated: sum_J N_J known(v_J, a_J)
-      const auto N = E::values(xi);
+      const auto N = E::values(xi, variant);
       for (int J = 0; J < E::kNodes; ++J) {
         const auto n = static_cast<std::size_t>(nodes[static_cast<std::size_t>(J)]);
         known += N[J] * c.known<D>(velocity[n], acceleration[n]);
       }
     }
     known -= body_force_scale[gs] * body_force;
-    q.add(-1 - g, xi, x_reference, mass[gs], volume0[gs], material[gs], F[gs], known, 0u, nullptr);
+    q.add(-1 - g, xi, x_reference, variant, mass[gs], volume0[gs], material[gs], F[gs], known, 0u, nullptr);
   }
 }
 

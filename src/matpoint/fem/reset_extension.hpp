@@ -79,7 +79,7 @@ ResetExtension<E>::ResetExtension(const mesh::Mesh<D>& mesh, std::span<const cha
     Eigen::Matrix<double, E::kNodes * D, E::kNodes* D> k = decltype(k)::Zero();
     for (std::size_t q = 0; q < rule.points.size(); ++q) {
       double det = 0.0;
-      const auto G = implicit::physical_gradients<E>(X, rule.points[q], &det);
+      const auto G = implicit::physical_gradients<E>(X, rule.points[q], mesh.element_variant(e), &det);
       const double w = rule.weights[q] * det;
       for (int I = 0; I < E::kNodes; ++I)
         for (int J = 0; J < E::kNodes; ++J) {

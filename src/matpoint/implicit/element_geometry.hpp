@@ -3,6 +3,7 @@
 #pragma once
 
 #include "matpoint/core/types.hpp"
+#include "matpoint/mesh/element_types.hpp"
 
 namespace matpoint::implicit {
 
@@ -13,11 +14,12 @@ using NodeMatrix = Eigen::Matrix<double, E::kNodes, E::kDim>;
 template <class E>
 using GradientMatrix = Eigen::Matrix<double, E::kNodes, E::kDim>;
 
-/// dN/dx at the local point xi of the element with nodes x; det_jacobian gets det(dx/dxi).
+/// dN/dx at the local point xi of the element with nodes x and variant `variant` (the mesh's
+/// element_variant; 0 for Lagrange elements); det_jacobian gets det(dx/dxi).
 template <class E>
 GradientMatrix<E> physical_gradients(const NodeMatrix<E>& x, const Vec<E::kDim>& xi,
-                                     double* det_jacobian = nullptr) {
-  const GradientMatrix<E> g = E::gradients(xi);
+                                     mesh::ElementVariant variant, double* det_jacobian = nullptr) {
+  const GradientMatrix<E> g = E::gradients(xi, variant);
   const Mat<E::kDim> jacobian = x.transpose() * g;  // J_ij = dx_i / dxi_j
   if (det_jacobian != nullptr) *det_jacobian = jacobian.determinant();
   return g * jacobian.inverse();  // dN/dx_k = sum_j dN/dxi_j (J^-1)_jk

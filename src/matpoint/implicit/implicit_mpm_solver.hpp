@@ -69,7 +69,7 @@ class ImplicitMpmSolver {
     // Iaconeta's projection to the nodes (eqs. (38)-(41), nodal_projection.hpp) divides by
     // sum_p N_I m_p: quadratic elements (Q9, T6) have negative shape values and nodal masses near 0
     // or below. A static analysis has no projection.
-    if (spec.solver.kind == SolverKind::ImplicitUl && E::kDegree >= 2 &&
+    if (spec.solver.kind == SolverKind::ImplicitUl && !E::kNonNegative &&
         !spec.solver.implicit.static_analysis)
       throw InputError({{"mesh.file", spec.mesh.file,
                          "a mesh of linear elements (T3, Q4, Hex8) for a dynamic solver.type \"implicit_ul\" "
@@ -117,9 +117,7 @@ class ImplicitMpmSolver {
     stepper_->initialize(sim_.particles, state_);
     previous_x_ = sim_.particles.x;
     for (const FeBodySpec& body : spec.fe_bodies) fe_takes_gravity_ = fe_takes_gravity_ || body.gravity;
-    // output.node_probes: the node nearest each position (ties: the lowest index), as particle probes
-    for (long node : probe_particle_ids<D>(mesh_.nodes, spec.output.node_probes))
-      probe_nodes_.push_back(static_cast<Index>(node));
+    set_node_probes(spec);
   }
   ImplicitMpmSolver(const ImplicitMpmSolver&) = delete;
   ImplicitMpmSolver& operator=(const ImplicitMpmSolver&) = delete;
@@ -176,7 +174,8 @@ class ImplicitMpmSolver {
         defect_work_ += report.defect_work;
       }
       // every solve of the step counts (one-sided walls: several)
-      return SubStepOutcome{report.ok(), report.lost_particles > 0, report.iterations, report.round_off_stops};
+      return SubStepOutcome{report.ok(), report.lost_particles > 0, report.iterations,
+                            report.round_off_stops};
     };
     advance_with_cuts<D>(h, spec_.solver.implicit.max_step_cuts, sim_, totals_, step_size_, attempt,
                          [&](double sub, int cuts) { fail(report, sub, cuts); });
@@ -197,8 +196,13 @@ class ImplicitMpmSolver {
   [[nodiscard]] std::vector<double> history_values() {
     std::vector<double> row = solver_history_values(totals_, marks_);
     const Eigen::VectorXd& u = stepper_->last_increment();
-    for (Index node : probe_nodes_)
-      for (int a = 0; a < D; ++a) row.push_back(u.size() > 0 ? u[node * D + a] : 0.0);
+    for (const ProbeWeights& probe : probes_)
+      for (int a = 0; a < D; ++a) {
+        double value = 0.0;
+        for (std::size_t k = 0; k < probe.nodes.size() && u.size() > 0; ++k)
+          value += probe.weights[k] * u[probe.nodes[k] * D + a];
+        row.push_back(value);
+      }
     for (std::size_t b = 0; b < spec_.fe_bodies.size(); ++b) {
       const auto [kinetic, strain] = fe_body_energies(static_cast<int>(b));
       row.push_back(kinetic), row.push_back(strain);
@@ -459,9 +463,10 @@ class ImplicitMpmSolver {
     for (Index k = 0; k < fe.element_count(); ++k) {
       if (b >= 0 && fe.body_of(k) != b) continue;
       const auto nodes = mesh_.element_nodes(fe.mesh_element(k));
+      const auto variant = mesh_.element_variant(fe.mesh_element(k));
       for (Index i = 0; i < per; ++i)
-        visit(static_cast<std::size_t>(k * per + i), E::values(rule.points[static_cast<std::size_t>(i)]),
-              nodes);
+        visit(static_cast<std::size_t>(k * per + i),
+              E::values(rule.points[static_cast<std::size_t>(i)], variant), nodes);
     }
   }
   /// sum_I N_I f_I over an element's nodes (f: a nodal field, or a difference of two).
@@ -585,7 +590,37 @@ class ImplicitMpmSolver {
   std::vector<Vec<D>> fe_displacement_before_;
   ImplicitTotals totals_;
   HistoryMarks marks_;
-  std::vector<Index> probe_nodes_;                                  // output.node_probes
+  /// An output.node_probes entry: the nodal displacement it reads is sum_k weights[k] u~(nodes[k]).
+  struct ProbeWeights {
+    std::vector<Index> nodes;
+    std::vector<double> weights;
+  };
+  std::vector<ProbeWeights> probes_;  // output.node_probes
+  /// output.node_probes: on a Lagrange mesh the node nearest each position (ties: the lowest index),
+  /// as particle probes; on a B-spline patch, whose nodes are control points off the body, the
+  /// field at the position (sum_I N_I(x) u~_I over the element holding it).
+  void set_node_probes(const Spec& spec) {
+    if constexpr (E::kShape == mesh::ElementShape::BSpline2) {
+      const mesh::PointLocator<D> locator(mesh_, mesh_.nodes);
+      for (std::size_t k = 0; k < spec.output.node_probes.size(); ++k) {
+        Vec<D> x;
+        for (int a = 0; a < D; ++a) x[a] = spec.output.node_probes[k].position[static_cast<std::size_t>(a)];
+        const auto at = locator.locate(x);
+        if (!at)
+          throw InputError({{"output.node_probes[" + std::to_string(k) + "].position", vec_text(x),
+                             "a point of the mesh"}});
+        const auto ids = mesh_.element_nodes(at->element);
+        const auto N = E::values(at->xi, mesh_.element_variant(at->element));
+        ProbeWeights probe;
+        for (int I = 0; I < E::kNodes; ++I)
+          probe.nodes.push_back(ids[static_cast<std::size_t>(I)]), probe.weights.push_back(N[I]);
+        probes_.push_back(std::move(probe));
+      }
+    } else {
+      for (long node : probe_particle_ids<D>(mesh_.nodes, spec.output.node_probes))
+        probes_.push_back({{static_cast<Index>(node)}, {1.0}});
+    }
+  }
   std::vector<std::pair<Index, const TimeFunction*>> moving_dofs_;  // "velocity" conditions (spec_'s)
   struct LoadedFace {
     Index element;

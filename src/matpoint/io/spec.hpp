@@ -154,8 +154,9 @@ struct VelocityConditionSpec {
 
 /// The element mesh of an implicit run (mesh/): a structured rectangle or box, graded per axis and
 /// refined `refine` times (Aulisa & Capodaglio's level J), or a Gmsh .msh file. T3: the Q4 cells
-/// split into triangles as `diagonal` says.
-enum class MeshElement { Q4, Q9, Hex8, T3, FromFile };
+/// split into triangles as `diagonal` says. BSpline2: a patch of C1 quadratic B-splines on equal
+/// cells (mesh/element_types.hpp).
+enum class MeshElement { Q4, Q9, Hex8, T3, FromFile, BSpline2 };
 struct MeshSpec {
   bool enabled = false;
   MeshElement element = MeshElement::Q9;
@@ -249,9 +250,9 @@ struct MeshfreeSpec {                         // solver.meshfree, multiples of t
   int min_nodes = 0;                          // MLS repair: variable radius (0: off; §6.5: 6)
   int lme_max_nodes = 0;                      // LME repair: augment the cloud up to this (0: off)
   std::optional<double> spacing;              // h; empty: the mesh's smallest cell size
-  bool mls_truncated_weight = false;          // mls_weight "truncated" (the authors' code) or "smooth" (C1 at R)
-  bool delete_failed_points = false;          // drop points without usable functions (the authors' code, §6.5)
-  bool carried_node_history = false;          // node_history "carried" (Algorithm 2) or "projected" (ours)
+  bool mls_truncated_weight = false;  // mls_weight "truncated" (the authors' code) or "smooth" (C1 at R)
+  bool delete_failed_points = false;  // drop points without usable functions (the authors' code, §6.5)
+  bool carried_node_history = false;  // node_history "carried" (Algorithm 2) or "projected" (ours)
 };
 struct ImplicitSpec {
   double beta = 0.3, gamma = 0.5;  // Newmark, eqs. (17)-(19); the paper's tests use 0.3 / 0.5

@@ -139,6 +139,10 @@ const QuadratureRule<3>& gauss_rule<Hex8>(int n) {
   return cached<Hex8, 4>(n, tensor_rule<3>);
 }
 template <>
+const QuadratureRule<2>& gauss_rule<BSpline2>(int n) {
+  return cached<BSpline2, 4>(n, tensor_rule<2>);
+}
+template <>
 const QuadratureRule<2>& gauss_rule<T3>(int n) {
   return cached<T3, 6>(n, triangle_rule);
 }

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -24,7 +25,13 @@
 
 namespace matpoint::mesh {
 
-enum class ElementShape { T3, T6, Q4, Q9, Hex8 };
+enum class ElementShape { T3, T6, Q4, Q9, Hex8, BSpline2 };
+
+/// Where an element lies in a patch, for element types whose shape functions depend on it (the
+/// B-spline cells at a patch's ends, BSpline2); always 0 for the Lagrange elements, whose
+/// `values` and `gradients` accept it and ignore it. A mesh keeps one per element
+/// (Mesh::element_variant).
+using ElementVariant = std::uint8_t;
 
 namespace detail {
 
@@ -58,18 +65,19 @@ struct Q4 {
   using Linear = Q4;
   static constexpr int kDim = 2, kNodes = 4, kDegree = 1, kCorners = 4;
   static constexpr bool kSimplex = false;
+  static constexpr bool kNonNegative = true;  // shape values >= 0 inside the element
   static constexpr const char* kName = "q4";
   static constexpr int kFaces = 4, kNodesPerFace = 2;
   /// Tensor indices (0 = -1, 1 = +1) of each local node.
   static constexpr std::array<std::array<int, 2>, kNodes> kTensor = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
 
-  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi) {
+  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi, ElementVariant /*variant*/ = 0) {
     const auto a = detail::lagrange1(xi[0]), b = detail::lagrange1(xi[1]);
     Eigen::Matrix<double, kNodes, 1> n;
     for (int i = 0; i < kNodes; ++i) n[i] = a[kTensor[i][0]] * b[kTensor[i][1]];
     return n;
   }
-  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& xi) {
+  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& xi, ElementVariant /*variant*/ = 0) {
     const auto a = detail::lagrange1(xi[0]), b = detail::lagrange1(xi[1]);
     const auto& d = detail::kLagrange1Derivative;
     Eigen::Matrix<double, kNodes, kDim> g;
@@ -99,19 +107,20 @@ struct Q9 {
   using Linear = Q4;
   static constexpr int kDim = 2, kNodes = 9, kDegree = 2, kCorners = 4;
   static constexpr bool kSimplex = false;
+  static constexpr bool kNonNegative = false;  // the corner and mid-side functions dip below 0
   static constexpr const char* kName = "q9";
   static constexpr int kFaces = 4, kNodesPerFace = 3;
   /// Tensor indices (0, 1, 2 for -1, 0, 1) of each local node.
   static constexpr std::array<std::array<int, 2>, kNodes> kTensor = {
       {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {2, 1}, {1, 2}, {0, 1}, {1, 1}}};
 
-  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi) {
+  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi, ElementVariant /*variant*/ = 0) {
     const auto a = detail::lagrange2(xi[0]), b = detail::lagrange2(xi[1]);
     Eigen::Matrix<double, kNodes, 1> n;
     for (int i = 0; i < kNodes; ++i) n[i] = a[kTensor[i][0]] * b[kTensor[i][1]];
     return n;
   }
-  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& xi) {
+  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& xi, ElementVariant /*variant*/ = 0) {
     const auto a = detail::lagrange2(xi[0]), b = detail::lagrange2(xi[1]);
     const auto da = detail::lagrange2_derivative(xi[0]), db = detail::lagrange2_derivative(xi[1]);
     Eigen::Matrix<double, kNodes, kDim> g;
@@ -141,13 +150,15 @@ struct T3 {
   using Linear = T3;
   static constexpr int kDim = 2, kNodes = 3, kDegree = 1, kCorners = 3;
   static constexpr bool kSimplex = true;
+  static constexpr bool kNonNegative = true;  // shape values >= 0 inside the element
   static constexpr const char* kName = "t3";
   static constexpr int kFaces = 3, kNodesPerFace = 2;
 
-  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi) {
+  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi, ElementVariant /*variant*/ = 0) {
     return {1.0 - xi[0] - xi[1], xi[0], xi[1]};
   }
-  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& /*xi*/) {
+  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& /*xi*/,
+                                                       ElementVariant /*variant*/ = 0) {
     Eigen::Matrix<double, kNodes, kDim> g;
     g << -1.0, -1.0, 1.0, 0.0, 0.0, 1.0;
     return g;
@@ -170,17 +181,18 @@ struct T6 {
   using Linear = T3;
   static constexpr int kDim = 2, kNodes = 6, kDegree = 2, kCorners = 3;
   static constexpr bool kSimplex = true;
+  static constexpr bool kNonNegative = false;  // the corner functions dip below 0
   static constexpr const char* kName = "t6";
   static constexpr int kFaces = 3, kNodesPerFace = 3;
 
-  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi) {
+  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi, ElementVariant /*variant*/ = 0) {
     const double l0 = 1.0 - xi[0] - xi[1], l1 = xi[0], l2 = xi[1];
     Eigen::Matrix<double, kNodes, 1> n;
     n << l0 * (2.0 * l0 - 1.0), l1 * (2.0 * l1 - 1.0), l2 * (2.0 * l2 - 1.0), 4.0 * l0 * l1, 4.0 * l1 * l2,
         4.0 * l2 * l0;
     return n;
   }
-  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& xi) {
+  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& xi, ElementVariant /*variant*/ = 0) {
     // dL0/dxi = (-1, -1), dL1/dxi = (1, 0), dL2/dxi = (0, 1).
     const double l0 = 1.0 - xi[0] - xi[1], l1 = xi[0], l2 = xi[1];
     Eigen::Matrix<double, kNodes, kDim> g;
@@ -211,19 +223,20 @@ struct Hex8 {
   using Linear = Hex8;
   static constexpr int kDim = 3, kNodes = 8, kDegree = 1, kCorners = 8;
   static constexpr bool kSimplex = false;
+  static constexpr bool kNonNegative = true;  // shape values >= 0 inside the element
   static constexpr const char* kName = "hex8";
   static constexpr int kFaces = 6, kNodesPerFace = 4;
   /// Tensor indices (0 = -1, 1 = +1) of each local node.
   static constexpr std::array<std::array<int, 3>, kNodes> kTensor = {
       {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
 
-  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi) {
+  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi, ElementVariant /*variant*/ = 0) {
     const auto a = detail::lagrange1(xi[0]), b = detail::lagrange1(xi[1]), c = detail::lagrange1(xi[2]);
     Eigen::Matrix<double, kNodes, 1> n;
     for (int i = 0; i < kNodes; ++i) n[i] = a[kTensor[i][0]] * b[kTensor[i][1]] * c[kTensor[i][2]];
     return n;
   }
-  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& xi) {
+  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& xi, ElementVariant /*variant*/ = 0) {
     const auto a = detail::lagrange1(xi[0]), b = detail::lagrange1(xi[1]), c = detail::lagrange1(xi[2]);
     const auto& d = detail::kLagrange1Derivative;
     Eigen::Matrix<double, kNodes, kDim> g;
@@ -245,6 +258,97 @@ struct Hex8 {
   static bool contains(const Vec<kDim>& xi, double tolerance) { return detail::in_cube<kDim>(xi, tolerance); }
   static std::array<std::array<int, kNodesPerFace>, kFaces> faces() {
     return {{{0, 3, 2, 1}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 6, 7}}};
+  }
+};
+
+namespace detail {
+
+/// The three quadratic B-splines of one cell of a uniform open knot vector (Piegl & Tiller, The
+/// NURBS Book, §2.2, eq. (2.5)) at the cell's local s = (xi + 1) / 2 in [0, 1], and their
+/// derivatives with respect to xi. `end` says where the cell lies in its patch: 0 inside (knots
+/// ..., k - 1, k, k + 1, k + 2, ...: the uniform splines), 1 first cell (knots 0, 0, 0, 1, 2),
+/// 2 last cell (the mirror image), 3 the only cell (knots 0, 0, 0, 1, 1, 1: Bernstein). With open
+/// knots the patch's end functions interpolate: at s = 0 of a first cell only the first is 1.
+inline std::array<double, 3> bspline2(double xi, int end) {
+  const double s = 0.5 * (xi + 1.0), r = 1.0 - s;
+  switch (end) {
+    case 1:
+      return {r * r, s * (2.0 - 1.5 * s), 0.5 * s * s};
+    case 2:
+      return {0.5 * r * r, r * (2.0 - 1.5 * r), s * s};
+    case 3:
+      return {r * r, 2.0 * s * r, s * s};
+    default:
+      return {0.5 * r * r, 0.5 + s * r, 0.5 * s * s};
+  }
+}
+inline std::array<double, 3> bspline2_derivative(double xi, int end) {
+  const double s = 0.5 * (xi + 1.0), r = 1.0 - s;  // d/dxi = (1/2) d/ds
+  switch (end) {
+    case 1:
+      return {-r, 1.0 - 1.5 * s, 0.5 * s};
+    case 2:
+      return {-0.5 * r, -(1.0 - 1.5 * r), s};
+    case 3:
+      return {-r, r - s, s};
+    default:
+      return {-0.5 * r, 0.5 * (r - s), 0.5 * s};
+  }
+}
+
+}  // namespace detail
+
+/// One cell of a 2-D patch of C1 quadratic B-splines on uniform open knot vectors (the smooth
+/// background grid of B-spline MPM: Steffen, Kirby & Berzins 2008; for the implicit MPMs a
+/// background whose gradients do not jump between elements, see docs/theory/implicit.md). The
+/// cell is [-1, 1]^2 in xi; its nine "nodes" are the control points of the 3 x 3 splines that are
+/// not zero on it, local node ix + 3 iy (ix, iy = 0, 1, 2 from low to high). The control points
+/// sit at the Greville abscissae (the mean of each spline's inner knots: the patch's ends, then
+/// h/2, 3h/2, ... from them), where they reproduce the affine map of the cell exactly. Each
+/// element's ElementVariant says where it lies along each axis (2 bits per axis, x first: 0 inside,
+/// 1 first, 2 last, 3 only cell; detail::bspline2). Values are >= 0 and sum to 1; at the patch's
+/// sides only the side's row of control points is not zero, so a Dirichlet condition on a side's
+/// control points is a Dirichlet condition on the side.
+struct BSpline2 {
+  static constexpr ElementShape kShape = ElementShape::BSpline2;
+  static constexpr int kDim = 2, kNodes = 9, kDegree = 2, kCorners = 4;
+  static constexpr bool kSimplex = false;
+  static constexpr bool kNonNegative = true;  // B-splines are >= 0
+  static constexpr const char* kName = "bspline2";
+  /// A side's three control points (for FE bodies' faces and surface loads, which a B-spline mesh
+  /// does not take: the input refuses them).
+  static constexpr int kFaces = 4, kNodesPerFace = 3;
+
+  /// Where the cell lies along axis a (0 inside, 1 first, 2 last, 3 only).
+  static constexpr int end_along(ElementVariant variant, int axis) { return (variant >> (2 * axis)) & 3; }
+  static constexpr ElementVariant variant_of(int end_x, int end_y) {
+    return static_cast<ElementVariant>(end_x | (end_y << 2));
+  }
+
+  static Eigen::Matrix<double, kNodes, 1> values(const Vec<kDim>& xi, ElementVariant variant) {
+    const auto a = detail::bspline2(xi[0], end_along(variant, 0));
+    const auto b = detail::bspline2(xi[1], end_along(variant, 1));
+    Eigen::Matrix<double, kNodes, 1> n;
+    for (int iy = 0; iy < 3; ++iy)
+      for (int ix = 0; ix < 3; ++ix) n[ix + 3 * iy] = a[ix] * b[iy];
+    return n;
+  }
+  static Eigen::Matrix<double, kNodes, kDim> gradients(const Vec<kDim>& xi, ElementVariant variant) {
+    const int ex = end_along(variant, 0), ey = end_along(variant, 1);
+    const auto a = detail::bspline2(xi[0], ex), b = detail::bspline2(xi[1], ey);
+    const auto da = detail::bspline2_derivative(xi[0], ex), db = detail::bspline2_derivative(xi[1], ey);
+    Eigen::Matrix<double, kNodes, kDim> g;
+    for (int iy = 0; iy < 3; ++iy)
+      for (int ix = 0; ix < 3; ++ix) {
+        g(ix + 3 * iy, 0) = da[ix] * b[iy];
+        g(ix + 3 * iy, 1) = a[ix] * db[iy];
+      }
+    return g;
+  }
+  static Vec<kDim> centre() { return Vec<kDim>::Zero(); }
+  static bool contains(const Vec<kDim>& xi, double tolerance) { return detail::in_cube<kDim>(xi, tolerance); }
+  static std::array<std::array<int, kNodesPerFace>, kFaces> faces() {
+    return {{{0, 1, 2}, {2, 5, 8}, {8, 7, 6}, {6, 3, 0}}};
   }
 };
 
@@ -273,6 +377,8 @@ template <>
 const QuadratureRule<2>& gauss_rule<T6>(int degree);
 template <>
 const QuadratureRule<3>& gauss_rule<Hex8>(int points_per_direction);
+template <>
+const QuadratureRule<2>& gauss_rule<BSpline2>(int points_per_direction);
 
 /// Highest argument gauss_rule accepts for the element type.
 template <class Element>
@@ -294,6 +400,8 @@ decltype(auto) visit_element_type(ElementShape shape, F&& f) {
       return std::forward<F>(f)(Q9{});
     case ElementShape::Hex8:
       return std::forward<F>(f)(Hex8{});
+    case ElementShape::BSpline2:
+      return std::forward<F>(f)(BSpline2{});
   }
   throw std::invalid_argument("visit_element_type: unknown element shape");
 }
@@ -312,6 +420,8 @@ decltype(auto) visit_element_type_of_dim(ElementShape shape, F&& f) {
         return std::forward<F>(f)(Q4{});
       case ElementShape::Q9:
         return std::forward<F>(f)(Q9{});
+      case ElementShape::BSpline2:
+        return std::forward<F>(f)(BSpline2{});
       default:
         break;
     }
@@ -321,7 +431,7 @@ decltype(auto) visit_element_type_of_dim(ElementShape shape, F&& f) {
   throw std::invalid_argument("element shape does not match the mesh dimension");
 }
 
-/// Spatial dimension of a shape (2 for T3, T6, Q4, Q9; 3 for Hex8).
+/// Spatial dimension of a shape (2 for T3, T6, Q4, Q9, BSpline2; 3 for Hex8).
 constexpr int shape_dimension(ElementShape shape) { return shape == ElementShape::Hex8 ? 3 : 2; }
 
 /// Lower-case name ("q9", ...) of a shape.

@@ -276,8 +276,12 @@ Mesh<D> read_gmsh(const std::string& file, const std::string& json_path) {
     const GmshElementBlock elements = elements_of_dimension<D>(gmsh, file, json_path);
     ElementShape shape{};
     shape_of_gmsh_type(elements.type, shape);
-    Mesh<D> mesh =
-        visit_element_type_of_dim<D>(shape, [&](auto e) { return build_mesh<decltype(e)>(gmsh, elements); });
+    Mesh<D> mesh = visit_element_type_of_dim<D>(shape, [&](auto e) -> Mesh<D> {
+      if constexpr (decltype(e)::kShape == ElementShape::BSpline2)  // Gmsh has no B-spline cells
+        throw std::logic_error("read_gmsh: a Gmsh element type read as a B-spline cell");
+      else
+        return build_mesh<decltype(e)>(gmsh, elements);
+    });
     gmsh.clear();
     return mesh;
   } catch (const std::out_of_range&) {  // a node or element tag that the file does not define

@@ -24,12 +24,12 @@ inline constexpr double kInverseMapRounding = 16.0;
 /// leaves |xi| <= 4 (the point is far outside this element), or no convergence.
 template <class E>
 std::optional<Vec<E::kDim>> inverse_map(const Eigen::Matrix<double, E::kNodes, E::kDim>& nodes,
-                                        const Vec<E::kDim>& x, Vec<E::kDim> xi) {
+                                        const Vec<E::kDim>& x, Vec<E::kDim> xi, ElementVariant variant = 0) {
   const double rounding = kInverseMapRounding * std::numeric_limits<double>::epsilon() *
                           std::max(nodes.cwiseAbs().maxCoeff(), x.cwiseAbs().maxCoeff());
   for (int it = 0; it < kInverseMapIterations; ++it) {
-    const Vec<E::kDim> residual = nodes.transpose() * E::values(xi) - x;
-    const Mat<E::kDim> jac = nodes.transpose() * E::gradients(xi);
+    const Vec<E::kDim> residual = nodes.transpose() * E::values(xi, variant) - x;
+    const Mat<E::kDim> jac = nodes.transpose() * E::gradients(xi, variant);
     if (!(jac.determinant() > 0.0)) return std::nullopt;
     const Vec<E::kDim> step = jac.inverse() * residual;
     xi -= step;

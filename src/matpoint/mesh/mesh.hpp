@@ -18,8 +18,9 @@ template <int D>
 struct Mesh {
   ElementShape shape = D == 3 ? ElementShape::Hex8 : ElementShape::Q9;  // one element type per mesh
   int nodes_per_element = 0;
-  std::vector<Vec<D>> nodes;        // coordinates (undeformed)
-  std::vector<Index> connectivity;  // element e: [e * nodes_per_element, (e + 1) * nodes_per_element)
+  std::vector<Vec<D>> nodes;             // coordinates (undeformed)
+  std::vector<Index> connectivity;       // element e: [e * nodes_per_element, (e + 1) * nodes_per_element)
+  std::vector<ElementVariant> variants;  // per element (BSpline2: where it lies); empty: all 0
   std::map<std::string, std::vector<Index>> node_sets;     // named boundaries, ascending node ids
   std::map<std::string, std::vector<Index>> element_sets;  // Gmsh physical groups of dimension D
   std::map<std::string, std::vector<std::pair<Index, int>>> boundary_faces;  // (element, local face)
@@ -30,6 +31,10 @@ struct Mesh {
   Index node_count() const { return static_cast<Index>(nodes.size()); }
   std::span<const Index> element_nodes(Index e) const {
     return {connectivity.data() + e * nodes_per_element, static_cast<std::size_t>(nodes_per_element)};
+  }
+  /// The variant of element e's shape functions (element_types.hpp); 0 for Lagrange elements.
+  ElementVariant element_variant(Index e) const {
+    return variants.empty() ? ElementVariant{0} : variants[static_cast<std::size_t>(e)];
   }
 };
 
@@ -57,7 +62,7 @@ double mesh_measure(const Mesh<D>& mesh, std::span<const Vec<D>> coordinates) {
     for (Index e = 0; e < mesh.element_count(); ++e) {
       const auto x = element_coordinates<E>(mesh, coordinates, e);
       for (std::size_t q = 0; q < rule.points.size(); ++q) {
-        const Mat<D> jac = x.transpose() * E::gradients(rule.points[q]);
+        const Mat<D> jac = x.transpose() * E::gradients(rule.points[q], mesh.element_variant(e));
         sum += rule.weights[q] * jac.determinant();
       }
     }

@@ -36,6 +36,35 @@ void write_cells(std::ostringstream& out, const Mesh<D>& mesh) {
   out << "        </DataArray>\n      </Cells>\n";
 }
 
+/// The cells of a B-spline patch as a Q4 mesh through each cell's four mapped corners (not shared:
+/// four points per element), and the displacement interpolated at them.
+template <int D>
+Mesh<D> bspline_cells(const Mesh<D>& mesh, const std::vector<Vec<D>>* displacement,
+                      std::vector<Vec<D>>& corner_displacement) {
+  Mesh<D> out;
+  if constexpr (D == 2) {
+    out.shape = ElementShape::Q4;
+    out.nodes_per_element = Q4::kNodes;
+    const auto corners = Q4::reference_nodes();
+    for (Index e = 0; e < mesh.element_count(); ++e) {
+      const auto ids = mesh.element_nodes(e);
+      for (int c = 0; c < Q4::kNodes; ++c) {
+        const auto N = BSpline2::values(corners.row(c).transpose(), mesh.element_variant(e));
+        Vec<D> x = Vec<D>::Zero(), d = Vec<D>::Zero();
+        for (int I = 0; I < BSpline2::kNodes; ++I) {
+          const auto n = static_cast<std::size_t>(ids[static_cast<std::size_t>(I)]);
+          x += N[I] * mesh.nodes[n];
+          if (displacement != nullptr) d += N[I] * (*displacement)[n];
+        }
+        out.connectivity.push_back(out.node_count());
+        out.nodes.push_back(x);
+        corner_displacement.push_back(d);
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::uint8_t vtk_cell_type(ElementShape shape) {
@@ -50,6 +79,8 @@ std::uint8_t vtk_cell_type(ElementShape shape) {
       return 28;  // VTK_BIQUADRATIC_QUAD
     case ElementShape::Hex8:
       return 12;  // VTK_HEXAHEDRON
+    case ElementShape::BSpline2:
+      return 9;  // VTK_QUAD through the cell's corners (bspline_cells)
   }
   throw std::invalid_argument("vtk_cell_type: unknown element shape");
 }
@@ -58,6 +89,11 @@ template <int D>
 std::string mesh_vtu(const Mesh<D>& mesh, const std::vector<Vec<D>>* displacement) {
   if (displacement != nullptr && static_cast<Index>(displacement->size()) != mesh.node_count())
     throw std::invalid_argument("mesh_vtu: one displacement per node expected");
+  if (mesh.shape == ElementShape::BSpline2) {
+    std::vector<Vec<D>> corner_displacement;
+    const Mesh<D> cells = bspline_cells(mesh, displacement, corner_displacement);
+    return mesh_vtu(cells, displacement != nullptr ? &corner_displacement : nullptr);
+  }
   std::ostringstream out;
   out << std::setprecision(17);
   out << "<?xml version=\"1.0\"?>\n"

@@ -3,7 +3,10 @@
 // displacement as point data (ParaView's "Warp By Vector" then shows the deformed mesh). Our local
 // node orders are VTK's: VTK_TRIANGLE (5), VTK_QUADRATIC_TRIANGLE (22: corners, then mid-edges
 // 0-1, 1-2, 2-0), VTK_QUAD (9), VTK_BIQUADRATIC_QUAD (28: corners, mid-edges 0-1, 1-2, 2-3, 3-0,
-// centre), VTK_HEXAHEDRON (12: bottom face, then top face, counter-clockwise). ASCII because the
+// centre), VTK_HEXAHEDRON (12: bottom face, then top face, counter-clockwise). A B-spline patch
+// (BSpline2), whose nodes are control points off the cells, is written as its cells: one VTK_QUAD
+// per element through the four corners of the cell's map, the displacement interpolated there
+// (the cells then show the deformed geometry, not the control net). ASCII because the
 // compressed writer of io/vtk_writer.cpp keeps its appended-data helper private.
 #pragma once
 

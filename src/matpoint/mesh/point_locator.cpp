@@ -43,8 +43,10 @@ void PointLocator<D>::exclude(std::vector<char> excluded) {
 template <int D>
 Vec<D> PointLocator<D>::element_boxes() {
   const Index ne = mesh_->element_count();
-  const double bulge = visit_element_type_of_dim<D>(
-      mesh_->shape, [](auto e) { return decltype(e)::kDegree == 2 ? kQuadraticBulge : 0.0; });
+  const double bulge = visit_element_type_of_dim<D>(mesh_->shape, [](auto e) {
+    using E = decltype(e);  // a B-spline cell lies inside the box of its control points
+    return E::kDegree == 2 && E::kShape != ElementShape::BSpline2 ? kQuadraticBulge : 0.0;
+  });
   box_low_.assign(ne, Vec<D>::Constant(1e300));
   box_high_.assign(ne, Vec<D>::Constant(-1e300));
   Vec<D> mean = Vec<D>::Zero();
@@ -149,12 +151,16 @@ template <int D>
 template <class E>
 std::optional<Vec<D>> PointLocator<D>::local_coordinates_as(Index e, const Vec<D>& x) const {
   const auto nodes = element_coordinates<E>(*mesh_, coordinates_, e);
-  auto xi = inverse_map<E>(nodes, x, E::centre());
+  auto xi = inverse_map<E>(nodes, x, E::centre(), mesh_->element_variant(e));
   if (xi || E::kDegree == 1) return xi;
-  // Curved elements: retry from the reference position of the nearest node (extraction §7).
-  int nearest = 0;
-  (nodes.rowwise() - x.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
-  return inverse_map<E>(nodes, x, E::reference_nodes().row(nearest).transpose());
+  if constexpr (E::kShape == ElementShape::BSpline2) {
+    return xi;  // a cell of the uniform B-spline patch is affine: Newton is exact from any start
+  } else {
+    // Curved elements: retry from the reference position of the nearest node (extraction §7).
+    int nearest = 0;
+    (nodes.rowwise() - x.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
+    return inverse_map<E>(nodes, x, E::reference_nodes().row(nearest).transpose());
+  }
 }
 
 template <int D>

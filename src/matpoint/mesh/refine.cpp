@@ -171,8 +171,14 @@ Mesh<D> refine(const Mesh<D>& mesh, int levels) {
   if (levels < 0) throw std::invalid_argument("refine: levels must be >= 0, got " + std::to_string(levels));
   Mesh<D> current = mesh;
   for (int level = 0; level < levels; ++level)
-    current = visit_element_type_of_dim<D>(
-        current.shape, [&](auto element) { return refine_once<decltype(element)>(current); });
+    current = visit_element_type_of_dim<D>(current.shape, [&](auto element) -> Mesh<D> {
+      using E = decltype(element);
+      if constexpr (E::kShape == ElementShape::BSpline2)  // no Lagrange nodes to split between
+        throw std::invalid_argument(
+            "refine: a B-spline patch is refined by its cell counts (structured_bspline2)");
+      else
+        return refine_once<E>(current);
+    });
   return current;
 }
 

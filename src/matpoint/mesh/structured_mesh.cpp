@@ -163,7 +163,47 @@ Mesh<2> structured_triangles(const AxisSpacing& x, const AxisSpacing& y, Triangl
   return mesh;
 }
 
+/// Greville abscissae of the quadratic B-splines on the open uniform knots of `s` (equal cells
+/// required): the ends, and the cell midpoints between them.
+std::vector<double> greville_quadratic(const AxisSpacing& s) {
+  const int n = s.cells();
+  const double h = (s.breaks.back() - s.breaks.front()) / n;
+  for (int c = 0; c < n; ++c)
+    require(std::abs(s.breaks[c + 1] - s.breaks[c] - h) <= 1e-9 * h,
+            "a B-spline patch needs equal cells along each axis (no grading, no mesh.lines)");
+  std::vector<double> out{s.breaks.front()};
+  for (int c = 0; c < n; ++c) out.push_back(0.5 * (s.breaks[c] + s.breaks[c + 1]));
+  out.push_back(s.breaks.back());
+  return out;
+}
+
+/// Where cell c of n lies along its axis, as BSpline2::end_along counts (0 inside, 1 first,
+/// 2 last, 3 only).
+int patch_end(Index c, Index n) { return (c == 0 ? 1 : 0) | (c == n - 1 ? 2 : 0); }
+
 }  // namespace
+
+Mesh<2> structured_bspline2(const AxisSpacing& x, const AxisSpacing& y) {
+  Mesh<2> mesh;
+  mesh.shape = ElementShape::BSpline2;
+  mesh.nodes_per_element = BSpline2::kNodes;
+  require(x.cells() >= 1 && y.cells() >= 1, "every axis needs at least one cell");
+  const std::array<std::vector<double>, 2> coordinates{greville_quadratic(x), greville_quadratic(y)};
+  Lattice<2> nodes, cells;
+  for (int a = 0; a < 2; ++a) {
+    nodes.size[a] = static_cast<Index>(coordinates[a].size());
+    cells.size[a] = nodes.size[a] - 2;
+  }
+  structured_nodes<2>(coordinates, nodes, mesh);
+  for (Index e = 0; e < cells.total(); ++e) {
+    const auto cell = cells.split(e);
+    for (int iy = 0; iy < 3; ++iy)
+      for (int ix = 0; ix < 3; ++ix) mesh.connectivity.push_back(nodes.flat({cell[0] + ix, cell[1] + iy}));
+    mesh.variants.push_back(
+        BSpline2::variant_of(patch_end(cell[0], cells.size[0]), patch_end(cell[1], cells.size[1])));
+  }
+  return mesh;
+}
 
 AxisSpacing AxisSpacing::uniform(double start, double end, int cells) {
   return geometric(start, end, cells, 1.0);

@@ -37,6 +37,14 @@ struct AxisSpacing {
 Mesh<2> structured_rectangle(ElementShape shape, const AxisSpacing& x, const AxisSpacing& y,
                              TrianglePattern pattern = TrianglePattern::Alternating);
 
+/// A 2-D patch of C1 quadratic B-splines on uniform open knot vectors (element_types.hpp,
+/// BSpline2): one element per cell of x.breaks x y.breaks (which must be equally spaced), its
+/// nodes the control points at the Greville abscissae, per axis the breaks' ends and the cell
+/// midpoints in between (cells + 2 per axis), x fastest. Node sets name the sides' control points
+/// (on the sides); the patch has no boundary faces (its sides are not Lagrange lines). Throws
+/// std::invalid_argument for unequal cells.
+Mesh<2> structured_bspline2(const AxisSpacing& x, const AxisSpacing& y);
+
 /// Structured Hex8 box mesh on x.breaks x y.breaks x z.breaks.
 Mesh<3> structured_box(const AxisSpacing& x, const AxisSpacing& y, const AxisSpacing& z);
 

@@ -12,7 +12,8 @@ namespace matpoint::run_by_solver {
 /// build_mesh (run_by_solver.hpp):
 /// A structured T3 mesh is refined on its axes before the cells are split (each cell into 2^refine
 /// x 2^refine cells, then into triangles by mesh.diagonal), so that its triangles stay the halves
-/// (quarters) of the run's grid cells, where bodies[].placement "gauss" puts the particles.
+/// (quarters) of the run's grid cells, where bodies[].placement "gauss" puts the particles. A
+/// B-spline patch likewise: refining it is splitting its equal cells (knot insertion).
 template <int D>
 mesh::Mesh<D> build_mesh(const MeshSpec& m) {
   mesh::Mesh<D> out;
@@ -20,6 +21,7 @@ mesh::Mesh<D> build_mesh(const MeshSpec& m) {
     out = mesh::read_gmsh<D>(m.file, "mesh.file");
   } else {
     const bool triangles = m.element == MeshElement::T3;
+    const bool splines = m.element == MeshElement::BSpline2;
     std::array<mesh::AxisSpacing, 3> axes;
     for (int a = 0; a < D; ++a) {
       auto& axis = axes[static_cast<std::size_t>(a)];
@@ -29,9 +31,10 @@ mesh::Mesh<D> build_mesh(const MeshSpec& m) {
       else
         axis = mesh::AxisSpacing::geometric(m.min[a], m.max[a], m.cells[static_cast<std::size_t>(a)],
                                             m.ratio[a]);
-      if (triangles) axis = axis.refined(m.refine);
+      if (triangles || splines) axis = axis.refined(m.refine);
     }
     if constexpr (D == 2) {
+      if (splines) return mesh::structured_bspline2(axes[0], axes[1]);
       const auto shape = triangles                      ? mesh::ElementShape::T3
                          : m.element == MeshElement::Q4 ? mesh::ElementShape::Q4
                                                         : mesh::ElementShape::Q9;

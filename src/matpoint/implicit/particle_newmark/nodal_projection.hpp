@@ -27,14 +27,15 @@ struct ProjectionInput {
 /// Eqs. (38)-(41) with the lumped mass (E's shape functions must be >= 0).
 template <class E>
 void lumped_projection(const mesh::Mesh<E::kDim>& mesh, const ProjectionInput<E::kDim>& in,
-                       std::vector<Vec<E::kDim>>& node_velocity, std::vector<Vec<E::kDim>>& node_acceleration) {
+                       std::vector<Vec<E::kDim>>& node_velocity,
+                       std::vector<Vec<E::kDim>>& node_acceleration) {
   constexpr int D = E::kDim;
   const auto nodes = static_cast<std::size_t>(mesh.node_count());
   std::vector<double> mass(nodes, 0.0);
   node_velocity.assign(nodes, Vec<D>::Zero());
   node_acceleration.assign(nodes, Vec<D>::Zero());
   for (std::size_t p = 0; p < in.mass.size(); ++p) {  // serial: a scatter, cheap beside the assembly
-    const auto N = E::values(in.xi[p]);
+    const auto N = E::values(in.xi[p], mesh.element_variant(in.element[p]));
     const auto element = mesh.element_nodes(in.element[p]);
     for (int I = 0; I < E::kNodes; ++I) {
       const auto n = static_cast<std::size_t>(element[static_cast<std::size_t>(I)]);

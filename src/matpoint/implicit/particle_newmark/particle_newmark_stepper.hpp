@@ -230,7 +230,8 @@ class ParticleNewmarkStepper {
       const double extent = (nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).maxCoeff();
       const Vec<D> offset = c.foot - particles.x[c.particle];
       FootBlock<E> foot{element,
-                        E::values(xi) + physical_gradients<E>(nodes, xi) * offset,
+                        E::values(xi, mesh_.element_variant(element)) +
+                            physical_gradients<E>(nodes, xi, mesh_.element_variant(element)) * offset,
                         c.plane.axis,
                         c.plane.outward,
                         c.gap,
@@ -333,7 +334,7 @@ auto ParticleNewmarkStepper<E, Material>::known_acceleration(const ParticleSet<D
                                                              const NewmarkCoefficients& c) const -> Vec<D> {
   if (options_.static_analysis) return Vec<D>::Zero();
   if (!options_.newmark_at_grid) return c.known<D>(particles.v[p], state.acceleration[p]);
-  const auto N = E::values(state.xi[p]);
+  const auto N = E::values(state.xi[p], mesh_.element_variant(state.element[p]));
   const auto element = mesh_.element_nodes(state.element[p]);
   Vec<D> v = Vec<D>::Zero(), a = Vec<D>::Zero();  // sum_I N_I v~_I, sum_I N_I a~_I
   for (int I = 0; I < E::kNodes; ++I) {
@@ -376,8 +377,8 @@ void ParticleNewmarkStepper<E, Material>::build_quadrature(const ParticleSet<D>&
     const NodeMatrix<E> x =
         gather_nodes<E>(options_.small_strain ? mesh_.nodes : reference_, mesh_.element_nodes(e));
     if (!fe_.empty() && fe_.fe_element(e) >= 0) {  // an FE element: its Gauss points
-      fe_.add_quadrature(fe_.fe_element(e), x, mesh_.element_nodes(e), c, options_.static_analysis,
-                         options_.gravity, q_);
+      fe_.add_quadrature(fe_.fe_element(e), x, mesh_.element_nodes(e), mesh_.element_variant(e), c,
+                         options_.static_analysis, options_.gravity, q_);
       q_.close_block();
       continue;
     }
@@ -395,8 +396,8 @@ void ParticleNewmarkStepper<E, Material>::build_quadrature(const ParticleSet<D>&
       std::uint32_t bits = 0;
       if constexpr (RecedingStencil<E>::kSupported)
         if (any_face) bits = receding_switches<E>(x, element_receding_[k], particles.v[p], walls);
-      q_.add(static_cast<Index>(p), state.xi[p], x, particles.mass[p], particles.volume0[p],
-             particles.material[p], particles.F[p],
+      q_.add(static_cast<Index>(p), state.xi[p], x, mesh_.element_variant(e), particles.mass[p],
+             particles.volume0[p], particles.material[p], particles.F[p],
              known_acceleration(particles, state, p, c) - options_.gravity, bits,
              material_history(particles, p));
     }

@@ -134,7 +134,7 @@ class ParticleNewmarkSystem {
     if (!lumped_mass_known_[k]) {
       lumped_mass_[k] = lumped_node_masses<E>(
           gauss_geometry<E>(gather_nodes<E>(data_.reference_nodes, data_.mesh->element_nodes(e)),
-                            data_.gauss_points_per_direction));
+                            data_.gauss_points_per_direction, data_.mesh->element_variant(e)));
       lumped_mass_known_[k] = 1;
     }
     return lumped_mass_[k];
@@ -175,8 +175,9 @@ void ParticleNewmarkSystem<E, Material>::setup(StepData data) {
       for (int i = 0; i < kDim; ++i) dofs.push_back(node * kDim + i);
     offsets.push_back(static_cast<Index>(dofs.size()));
     if (data_.soft_stiffness[static_cast<std::size_t>(k)] > 0.0)
-      soft_geometry_[static_cast<std::size_t>(k)] = gauss_geometry<E>(
-          gather_nodes<E>(data_.reference_nodes, mesh.element_nodes(e)), data_.gauss_points_per_direction);
+      soft_geometry_[static_cast<std::size_t>(k)] =
+          gauss_geometry<E>(gather_nodes<E>(data_.reference_nodes, mesh.element_nodes(e)),
+                            data_.gauss_points_per_direction, mesh.element_variant(e));
   }
   // Surface loads on the faces of active elements (elsewhere the body is not at the boundary).
   loads_.clear();

@@ -57,12 +57,12 @@ struct ParticleQuadrature {
     F_old.clear(), known.clear(), receding.clear(), state.clear();
   }
   /// Appends one particle to the current (last) block.
-  void add(Index p, const Vec<kDim>& xi, const NodeMatrix<E>& reference_nodes, double m, double v0, int mat,
-           const Mat<kDim>& F, const Vec<kDim>& known_minus_b, std::uint32_t receding_bits,
-           const double* history = nullptr) {
+  void add(Index p, const Vec<kDim>& xi, const NodeMatrix<E>& reference_nodes, mesh::ElementVariant variant,
+           double m, double v0, int mat, const Mat<kDim>& F, const Vec<kDim>& known_minus_b,
+           std::uint32_t receding_bits, const double* history = nullptr) {
     particle.push_back(p);
-    N.push_back(E::values(xi));
-    G.push_back(physical_gradients<E>(reference_nodes, xi));
+    N.push_back(E::values(xi, variant));
+    G.push_back(physical_gradients<E>(reference_nodes, xi, variant));
     mass.push_back(m), volume0.push_back(v0), material.push_back(mat);
     F_old.push_back(F), known.push_back(known_minus_b), receding.push_back(receding_bits);
     state.push_back(history);

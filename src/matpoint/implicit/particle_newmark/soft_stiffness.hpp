@@ -22,13 +22,14 @@ struct GaussGeometry {
 };
 
 template <class E>
-GaussGeometry<E> gauss_geometry(const NodeMatrix<E>& x, int points_per_direction) {
+GaussGeometry<E> gauss_geometry(const NodeMatrix<E>& x, int points_per_direction,
+                                mesh::ElementVariant variant) {
   const auto& rule = mesh::gauss_rule<E>(points_per_direction);
   GaussGeometry<E> g;
   for (std::size_t k = 0; k < rule.points.size(); ++k) {
     double det = 0.0;
-    g.G.push_back(physical_gradients<E>(x, rule.points[k], &det));
-    g.N.push_back(E::values(rule.points[k]));
+    g.G.push_back(physical_gradients<E>(x, rule.points[k], variant, &det));
+    g.N.push_back(E::values(rule.points[k], variant));
     g.weight.push_back(rule.weights[k] * det);
   }
   return g;

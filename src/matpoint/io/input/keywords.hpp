@@ -84,8 +84,11 @@ constexpr std::array<Named<CellVolume>, 2> kCellVolumes{
 constexpr std::array<Named<DeformationUpdate>, 2> kDeformationUpdates{
     {{"exponential", DeformationUpdate::Exponential}, {"linear", DeformationUpdate::Linear}}};
 
-constexpr std::array<Named<MeshElement>, 4> kMeshElements{
-    {{"q4", MeshElement::Q4}, {"q9", MeshElement::Q9}, {"t3", MeshElement::T3}, {"hex8", MeshElement::Hex8}}};
+constexpr std::array<Named<MeshElement>, 5> kMeshElements{{{"q4", MeshElement::Q4},
+                                                           {"q9", MeshElement::Q9},
+                                                           {"t3", MeshElement::T3},
+                                                           {"hex8", MeshElement::Hex8},
+                                                           {"bspline2", MeshElement::BSpline2}}};
 constexpr std::array<Named<mesh::TrianglePattern>, 4> kTrianglePatterns{
     {{"rising", mesh::TrianglePattern::Rising},
      {"falling", mesh::TrianglePattern::Falling},

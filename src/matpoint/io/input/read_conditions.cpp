@@ -87,6 +87,13 @@ VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
     c.optional("normal").fail("no normal unless type is \"slip\"");
   }
   set_if(out.receding, c.optional("receding").number(kUnitInterval));
+  if (out.receding > 0 && spec_.mesh.element != MeshElement::Q9 &&
+      spec_.mesh.element != MeshElement::FromFile)
+    c.optional("receding")
+        .fail(
+            "0 unless mesh.element is \"q9\" (the receding correction of eq. (47) needs three nodes along "
+            "each "
+            "line normal to a face)");
   if (const auto one_sided = c.optional("one_sided").boolean(); one_sided && *one_sided) {
     if (out.kind == ConditionKind::Velocity)
       c.optional("one_sided")

@@ -16,6 +16,12 @@ void SpecReader::read_fe_bodies(const Value& list) {
     list.fail("no fe_bodies unless solver.type is \"implicit_mpm\" (Aulisa & Capodaglio's coupling)");
     return;
   }
+  if (spec_.mesh.element == MeshElement::BSpline2) {
+    list.fail(
+        "no fe_bodies on a mesh.element \"bspline2\" (FE bodies are Lagrange elements of the mesh: \"q4\", "
+        "\"q9\", \"t3\", \"hex8\" or a mesh file)");
+    return;
+  }
   const auto items = list.elements("a non-empty array of FE body objects", 1);
   for (std::size_t k = 0; k < items.size(); ++k) {
     const Object b(items[k],

@@ -60,6 +60,15 @@ void SpecReader::read_mesh(const Object& m) {
     }
   }
   set_if(out.refine, m.optional("refine").integer(0, kMaxRefine));
+  if (out.element == MeshElement::BSpline2) {
+    if (m.has("lines"))
+      m.optional("lines").fail("no lines with mesh.element \"bspline2\" (a B-spline patch has equal cells)");
+    for (int a = 0; a < dim_; ++a)
+      if (out.ratio[a] != 1.0)
+        m.optional("ratio").fail(
+            numbers_text(dim_, kAnyNumber) +
+            ", each 1, with mesh.element \"bspline2\" (a B-spline patch has equal cells)");
+  }
   if (issues_.size() != issues_before) return;
   GridSpec& g = spec_.grid;
   g.dim = dim_;

@@ -39,6 +39,12 @@ void SpecReader::read_loads(const Object& loads) {
         "run's mesh boundaries)");
     return;
   }
+  if (spec_.mesh.element == MeshElement::BSpline2) {
+    tractions.fail(
+        "no tractions on a mesh.element \"bspline2\" (surface loads are integrated on Lagrange faces: "
+        "\"q4\", \"q9\", \"t3\", \"hex8\" or a mesh file)");
+    return;
+  }
   for (const auto& item :
        tractions.elements("an array of {\"boundary\", \"pressure\" or \"traction\"} objects"))
     spec_.loads.tractions.push_back(read_surface_load(Object(item, {"boundary", "pressure", "traction"})));
@@ -489,6 +495,10 @@ void SpecReader::read_implicit_basis(const Object& s) {
   }
   const bool mls = m.basis == ImplicitBasis::Mls;
   const std::string basis = mls ? "\"mls\"" : "\"lme\"";
+  if (spec_.mesh.element == MeshElement::BSpline2)
+    s.optional("basis").fail(
+        "\"mesh\" with mesh.element \"bspline2\" (the meshfree nodes are a Lagrange "
+        "mesh's nodes; a B-spline patch's are control points)");
   if (spec_.solver.kind != SolverKind::ImplicitUl)
     s.optional("basis").fail(
         "\"mesh\" under solver.type \"implicit_mpm\" (the Galerkin meshfree method, Iaconeta 2017 §4.2, "
