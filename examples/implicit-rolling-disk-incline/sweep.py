@@ -10,8 +10,11 @@ t_end against rolling (rolling_final_displacement_error), eq. (67) with outputs 
 (rolling_displacement_error_norm, m), the wall time and Newton's iterations, beside Table 1's MPM row.
 
     examples/implicit-rolling-disk-incline/sweep.py BUILD/matpoint [--quick] [--fixed] [--diagonal PATTERN]
+                                                   [--bspline]
 
---quick: h = 0.02 m and t_end = 0.3 s (seconds instead of minutes). README.md has the last output.
+--quick: h = 0.02 m and t_end = 0.3 s (seconds instead of minutes). --bspline: the C1 B-spline
+background of bspline.json (cells of the same h, 2 x 2 particles per cell, soft stiffness) instead of
+the T3 mesh. README.md has the last output.
 """
 import json
 import os
@@ -29,8 +32,8 @@ def load(name):
     return json.loads("\n".join(line for line in text.splitlines() if not line.lstrip().startswith("//")))
 
 
-def case(floor, dt, quick, diagonal):
-    spec = load("no-slip.json")
+def case(floor, dt, quick, diagonal, bspline=False):
+    spec = load("bspline.json" if bspline else "no-slip.json")
     if quick:
         spec["mesh"]["cells"] = [spec["mesh"]["cells"][0] // 2, spec["mesh"]["cells"][1] // 2]
         spec["solver"]["end_time"] = 0.3
@@ -64,14 +67,14 @@ def run(binary, spec):
 def main(argv):
     if len(argv) < 2:
         sys.exit(__doc__)
-    binary, quick = argv[1], "--quick" in argv
+    binary, quick, bspline = argv[1], "--quick" in argv, "--bspline" in argv
     diagonal = argv[argv.index("--diagonal") + 1] if "--diagonal" in argv else None
     print(f"{'floor':8} {'dt (s)':>8} {'a / (2/3 g sin)':>15} {'u(t_end) err':>12} {'eq. (67) m':>10} "
           f"{'wall s':>7} {'Newton':>6}   Table 1 MPM: {'error m':>7} {'t_comp s':>8}")
     floors = ("no-slip", "fixed", "slip") if "--fixed" in argv else ("no-slip", "slip")
     for floor in floors:
         for dt in (1e-3, 5e-4, 2.5e-4):
-            measured, summary = run(binary, case(floor, dt, quick, diagonal))
+            measured, summary = run(binary, case(floor, dt, quick, diagonal, bspline))
             implicit = summary.get("implicit", {})
             paper = TABLE1_MPM[dt] if floor == "no-slip" else ("", "")
             print(f"{floor:8} {dt:8.2e} {measured[MEASURES[0]]:15.4f} {measured[MEASURES[1]]:12.4f} "
