@@ -59,6 +59,13 @@ VelocityConditionSpec SpecReader::read_moving_wall(const Object& c) const {
   return out;
 }
 
+void SpecReader::check_receding_mesh(const Value& v, double receding) const {
+  if (receding > 0 && spec_.mesh.element != MeshElement::Q9 && spec_.mesh.element != MeshElement::FromFile)
+    v.fail(
+        "0 unless mesh.element is \"q9\" (the receding correction of eq. (47) needs three nodes along each "
+        "line normal to a face)");
+}
+
 /// A condition of an implicit run: "fixed" (every component 0), "slip" (the normal component 0) or
 /// "velocity" (the listed components move at the prescribed velocity) on the nodes of a named mesh boundary,
 /// with the receding-contact constant C_c in [0, 1] of its faces (Aulisa & Capodaglio §5, eq. (47) as
@@ -87,13 +94,7 @@ VelocityConditionSpec SpecReader::read_mesh_condition(const Object& c) const {
     c.optional("normal").fail("no normal unless type is \"slip\"");
   }
   set_if(out.receding, c.optional("receding").number(kUnitInterval));
-  if (out.receding > 0 && spec_.mesh.element != MeshElement::Q9 &&
-      spec_.mesh.element != MeshElement::FromFile)
-    c.optional("receding")
-        .fail(
-            "0 unless mesh.element is \"q9\" (the receding correction of eq. (47) needs three nodes along "
-            "each "
-            "line normal to a face)");
+  check_receding_mesh(c.optional("receding"), out.receding);
   if (const auto one_sided = c.optional("one_sided").boolean(); one_sided && *one_sided) {
     if (out.kind == ConditionKind::Velocity)
       c.optional("one_sided")

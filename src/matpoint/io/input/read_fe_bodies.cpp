@@ -47,12 +47,7 @@ void SpecReader::read_fe_bodies(const Value& list) {
     set_if(out.gravity, b.optional("gravity").boolean());
     set_if(out.unit_inertia_density, b.optional("inertia").choice(kFeInertia));
     set_if(out.interface_receding, b.optional("interface_receding").number(kUnitInterval));
-    if (out.interface_receding > 0 && spec_.mesh.element != MeshElement::Q9 &&
-        spec_.mesh.element != MeshElement::FromFile)
-      b.optional("interface_receding")
-          .fail(
-              "0 unless mesh.element is \"q9\" (the receding correction of eq. (47) needs three nodes "
-              "along each line normal to a face)");
+    check_receding_mesh(b.optional("interface_receding"), out.interface_receding);
     spec_.fe_bodies.push_back(out);
   }
 }

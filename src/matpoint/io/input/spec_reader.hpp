@@ -133,6 +133,9 @@ class SpecReader {
   /// A structured mesh's boundaries are its sides ("left", ...); a Gmsh mesh's are checked at set-up.
   void check_one_sided_normal(const Object& c, const VelocityConditionSpec& out) const;
   void check_mesh_boundary(const Value& v, const std::string& name) const;
+  /// A receding constant C_c > 0 (conditions[].receding, fe_bodies[].interface_receding) needs Q9
+  /// elements (or a mesh file, checked when the mesh is built): fails at v otherwise.
+  void check_receding_mesh(const Value& v, double receding) const;
 
   /// "velocity": required for type "velocity" (grid faces, boxes and mesh boundaries alike), refused
   /// otherwise.
