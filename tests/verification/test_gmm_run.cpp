@@ -183,7 +183,18 @@ TEST_F(GmmRun, NoSlipFloorStopsALandingSlideInsteadOfReversingIt) {
                                    basis + R"(", "dt": 0.001, "end_time": 0.001},
         "output": {"plots": false}})");
       implicit::MeshfreeSolver<2> solver(spec, m);
+      RunFacts before, after;
+      solver.add_facts(before);
       solver.step(dt);
+      solver.add_facts(after);
+      // Every Newton iteration factorises K once (the first step starts from the set-up's nodal v
+      // and a, without a projection of its own). The landing changes the walls' contact set, so the
+      // step takes several solves (about 29 iterations; Newton stops at 20 per solve), and the count
+      // must include every one (it once counted only the last solve's).
+      const long factorizations = after.implicit->at("factorizations").get<long>() -
+                                  before.implicit->at("factorizations").get<long>();
+      EXPECT_GT(factorizations, 20) << basis << " E = " << E;
+      EXPECT_EQ(solver.totals().newton_iterations, factorizations) << basis << " E = " << E;
       double sum = 0.0;
       for (const auto& v : solver.sim().particles.v) sum += v[0];
       mean_slide.push_back(sum / static_cast<double>(solver.sim().particles.v.size()));

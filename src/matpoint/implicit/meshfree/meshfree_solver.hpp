@@ -127,6 +127,7 @@ class MeshfreeSolver {
       const std::vector<Vec<D>> nodes_before = body_.node_x;
       const double assembly_before = stepper_.assembly_seconds();
       const int round_off_stops_before = stepper_.round_off_stops();
+      const int iterations_before = stepper_.newton_iterations();
       if (spec_.solver.implicit.meshfree.delete_failed_points) delete_failed_points();
       hold_nodes_on_walls();
       OneSidedBoundary<D>* walls = nullptr;
@@ -142,7 +143,7 @@ class MeshfreeSolver {
         account_gravity_work<D>(sim_, previous_x_, sub, gravity);
         probe_step(nodes_before);
       }
-      return SubStepOutcome{result.converged(), false, result.iterations(),
+      return SubStepOutcome{result.converged(), false, stepper_.newton_iterations() - iterations_before,
                             stepper_.round_off_stops() - round_off_stops_before};
     };
     advance_with_cuts<D>(h, spec_.solver.implicit.max_step_cuts, sim_, totals_, step_size_, attempt,

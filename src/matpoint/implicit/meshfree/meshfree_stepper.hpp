@@ -189,6 +189,7 @@ class MeshfreeStepper {
       non_finite_point_ = -1;
       result = newton_solve(assemble, assembly_.pattern_version(), *solver_, du, options_.newton);
       round_off_stops_ += result.round_off_stop ? 1 : 0;
+      newton_iterations_ += result.iterations();
       if (walls == nullptr || !result.converged() || solves >= walls->max_rounds()) break;
       std::vector<double> inward(candidates_.size());
       for (std::size_t c = 0; c < candidates_.size(); ++c)
@@ -242,6 +243,9 @@ class MeshfreeStepper {
   [[nodiscard]] double assembly_seconds() const { return assembly_seconds_; }
   /// Newton solves so far that converged by the round-off stop (newton.hpp).
   [[nodiscard]] int round_off_stops() const { return round_off_stops_; }
+  /// Newton iterations so far, every solve of a step counted (a re-solve after the walls' contact
+  /// set changed too, as ParticleNewmarkStepper counts them).
+  [[nodiscard]] int newton_iterations() const { return newton_iterations_; }
   [[nodiscard]] int colours() const { return assembly_.colour_count(); }
   [[nodiscard]] const MeshfreeStencils<D>& stencils() const { return stencils_; }
   [[nodiscard]] const Eigen::VectorXd& last_increment() const { return last_increment_; }
@@ -598,6 +602,7 @@ class MeshfreeStepper {
   Eigen::VectorXd last_increment_;
   double assembly_seconds_ = 0.0;
   int round_off_stops_ = 0;
+  int newton_iterations_ = 0;
   Index non_finite_point_ = -1;
 };
 
