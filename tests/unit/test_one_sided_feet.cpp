@@ -126,3 +126,29 @@ TEST(OneSidedFeet, StopDisplacementEndsANewmarkStepAtRest) {
 }
 
 }  // namespace
+
+// The contact set's update after a solve (step 4 of one_sided_boundary.hpp): a free foot past the
+// wall is held, a held foot whose spring the wall would stretch (pull) is released, a foot pushed on
+// stays; a stretch or pass within the tolerance (1e-8 of the particle's size: the solve's accuracy)
+// changes nothing. A set in which nothing pulls and nothing is past is settled (update: false).
+TEST(OneSidedFeet, UpdateReleasesPullingFeetAndHoldsThoseThatPassedTheWall) {
+  const double size = 0.1, tolerance = kContactTolerance * size;
+  ParticleSet<2> particles;
+  for (int i = 0; i < 4; ++i)  // touching the floor y = 0: held from the start
+    particles.add(Vec<2>(i * size, 0.5 * size), Vec<2>::Zero(), 1.0, size * size, Vec<2>(size, size), 0, 0);
+  for (int i = 4; i < 6; ++i)  // 0.05 above it
+    particles.add(Vec<2>(i * size, 0.5 * size + 0.05), Vec<2>::Zero(), 1.0, size * size, Vec<2>(size, size),
+                  0, 0);
+  const WallPlane floor{1, 0.0, -1.0};
+  OneSidedBoundary<2> wall({OneSidedNode{0, floor, true}});
+  wall.start_step(particles, 1e-3);
+  ASSERT_EQ(wall.candidates().size(), 6U);
+  EXPECT_EQ(wall.in_contact(), (std::vector<char>{1, 1, 1, 1, 0, 0}));
+  // Stretches gap + inward: 0.4 pulls, -0.2 is pushed on, 0.5 and -0.5 tolerances are round-off;
+  // the free feet (gap 0.05) moved 0.1 and 0.05 + 0.5 tolerance towards the floor.
+  const std::vector<double> inward{
+      0.4, -0.2, 0.5 * tolerance, -0.5 * tolerance, -0.1, -0.05 - 0.5 * tolerance};
+  EXPECT_TRUE(wall.update(inward));
+  EXPECT_EQ(wall.in_contact(), (std::vector<char>{0, 1, 1, 1, 1, 0}));
+  EXPECT_FALSE(wall.update(inward));  // settled
+}

@@ -85,7 +85,8 @@ class MeshfreeSolver {
         stepper_(implicit_materials(sim_), options_),
         step_size_(spec.solver) {
     build_body(mesh);
-    one_sided_ = OneSidedBoundary<D>(one_sided_nodes(mesh, spec), 10, body_shape_test<D>(spec));
+    one_sided_ =
+        OneSidedBoundary<D>(one_sided_nodes(mesh, spec), kMaxOneSidedRounds, body_shape_test<D>(spec));
     wall_stiffness_ = one_sided_stiffness(mesh);
     previous_x_ = sim_.particles.x;
     std::vector<Vec<D>> nodes(body_.node_x.begin(), body_.node_x.end());

@@ -80,7 +80,7 @@ struct ParticleNewmarkOptions {
   /// (body index, reference point) -> inside the body's shape: where the one-sided walls find the
   /// bodies' surfaces (empty: the particles' domains stand for them)
   std::function<bool(int, const Vec<D>&)> body_contains;
-  int max_one_sided_rounds = 10;  // Newton solves per step while the held set changes
+  int max_one_sided_rounds = kMaxOneSidedRounds;  // Newton solves per step while the held set changes
 };
 
 struct StepReport {
