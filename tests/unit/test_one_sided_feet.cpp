@@ -125,8 +125,6 @@ TEST(OneSidedFeet, StopDisplacementEndsANewmarkStepAtRest) {
   EXPECT_NEAR(r[2], 0.0, 1e-9);
 }
 
-}  // namespace
-
 // The contact set's update after a solve (step 4 of one_sided_boundary.hpp): a free foot past the
 // wall is held, a held foot whose spring the wall would stretch (pull) is released, a foot pushed on
 // stays; a stretch or pass within the tolerance (1e-8 of the particle's size: the solve's accuracy)
@@ -152,3 +150,5 @@ TEST(OneSidedFeet, UpdateReleasesPullingFeetAndHoldsThoseThatPassedTheWall) {
   EXPECT_EQ(wall.in_contact(), (std::vector<char>{0, 1, 1, 1, 1, 0}));
   EXPECT_FALSE(wall.update(inward));  // settled
 }
+
+}  // namespace
