@@ -1,7 +1,9 @@
 // Issue 23, verification 1 and 2: the explicit solver decomposed over the MPI ranks gives the
 // serial run's particles bit for bit (docs/scale-out.md §6: the scatter's colour-by-colour hand-off
 // keeps the serial summation order), and migration keeps every particle exactly once; stage 3
-// (§17): with multi-field contact, coupled heat, one-sided faces and dynamic FMPM too.
+// (§17): with multi-field contact, coupled heat, one-sided faces and dynamic FMPM too. Each rank
+// stores only its window of the grid (§2), fitted again when the partition or the stencils' reach
+// changes (re-cuts, CPDI).
 //
 // Every rank runs the serial reference itself (a Simulation on one rank), then the decomposed run
 // on all ranks; the decomposed particles are gathered by id and compared with `==`. The expected
@@ -84,6 +86,11 @@ Particles run(const Spec& spec, long steps, const Communicator& comm, long* most
                              comm.max(std::labs(static_cast<long>(ps.size()) - static_cast<long>(before))));
   }
   if (repartitions != nullptr) *repartitions = solver.repartitions();
+  // The grid window (docs/scale-out.md §2): on several ranks none stores the whole grid.
+  const Grid<2>& grid = solver.sim().grid;
+  if (comm.size() > 1)
+    EXPECT_LT(comm.max(static_cast<long>(grid.node_count)), static_cast<long>(grid.total_node_count()))
+        << "the largest window of any rank";
   return gather(solver.sim(), comm);
 }
 

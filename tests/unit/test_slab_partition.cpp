@@ -91,3 +91,49 @@ TEST(SlabPartition, CountsPerLayerAndStoredLayersGiveTheSameCut) {
 }
 
 }  // namespace
+
+namespace {
+
+// Grid::window (docs/scale-out.md §2): a rank stores the node layers [begin, end) along the cut axis;
+// each stored node keeps its coordinates and position, the numbering is x fastest from 0, and a
+// value carried from one window to another by node lands on the same node. Expected values from
+// the definition: a window of layers [3, 7) of a 10 x 20 grid stores 11 x 4 nodes.
+TEST(GridWindow, StoresTheLayersAndKeepsEveryNodesCoordinatesAndPosition) {
+  const Grid<2> whole(Vec<2>(-1.0, 2.0), Vec<2>(0.5, 0.25), {10, 20}, 0);
+  const Grid<2> window = whole.window(1, 3, 7);
+  EXPECT_EQ(window.node_count, 11 * 4);
+  EXPECT_EQ(window.total_node_count(), whole.node_count);
+  EXPECT_EQ(window.node_index({0, 3}), 0);
+  EXPECT_EQ(window.node_index({10, 6}), 11 * 4 - 1);
+  for (Index n = 0; n < window.node_count; ++n) {
+    const auto ijk = window.node_coords(n);
+    EXPECT_TRUE(window.stores(ijk));
+    EXPECT_GE(ijk[1], 3);
+    EXPECT_LT(ijk[1], 7);
+    EXPECT_EQ(window.node_index(ijk), n);
+    EXPECT_EQ(window.node_position(n), whole.node_position(whole.node_index(ijk)));
+    EXPECT_EQ(window.node_index_in(whole, n), whole.node_index(ijk));
+  }
+  EXPECT_FALSE(window.stores({0, 2}));
+  EXPECT_FALSE(window.stores({0, 7}));
+  // Geometry is the whole grid's: cells, containment and cell indices do not change.
+  EXPECT_EQ(window.cell_index(Vec<2>(3.0, 6.9)), whole.cell_index(Vec<2>(3.0, 6.9)));
+  EXPECT_TRUE(window.contains(Vec<2>(3.9, 6.9)));
+  // Another window: the shared layers map onto each other, the others onto none.
+  const Grid<2> above = whole.window(1, 5, 21);
+  EXPECT_EQ(above.nodes[1], 16);
+  for (Index n = 0; n < window.node_count; ++n) {
+    const Index k = window.node_index_in(above, n);
+    if (window.node_coords(n)[1] < 5)
+      EXPECT_EQ(k, -1);
+    else
+      EXPECT_EQ(above.node_coords(k), window.node_coords(n));
+  }
+  // Clamped to the grid's nodes (ghost layers included).
+  const Grid<2> ghosted(Vec<2>::Zero(), Vec<2>::Ones(), {4, 4}, 1);
+  const Grid<2> clamped = ghosted.window(1, -5, 50);
+  EXPECT_EQ(clamped.node_count, ghosted.node_count);
+  EXPECT_EQ(clamped.first[1], -1);
+}
+
+}  // namespace

@@ -21,8 +21,8 @@ struct GridModes {
   double checkerboard_velocity = 0.0, rms_velocity = 0.0, hourglass_energy = 0.0;
 };
 
-/// The nodes a rank counts in a decomposed run (every rank stores the whole grid, and a node near
-/// a rank boundary is stored by two ranks with the same values): the flat node indices
+/// The nodes a rank counts in a decomposed run (a node near a rank boundary is stored by two
+/// ranks with the same values): the flat node indices
 /// [begin, end) it owns (Simulation::owns_node), and the ranks to sum over. The default: one rank
 /// that owns every node.
 struct NodeOwnership {
@@ -62,7 +62,7 @@ GridModes measure_grid_modes(const Grid<D>& grid, const std::vector<double>& mas
       if (!owned.owns(i)) continue;
       const auto ijk = grid.node_coords(i);
       bool interior = true;
-      for (int a = 0; a < D; ++a) interior = interior && ijk[a] + 1 < grid.nodes[a] - grid.ghost;
+      for (int a = 0; a < D; ++a) interior = interior && ijk[a] + 1 < grid.first[a] + grid.nodes[a];
       if (!interior) continue;
       double m = 0.0;
       Vec<D> hg = Vec<D>::Zero();

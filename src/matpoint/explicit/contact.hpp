@@ -49,6 +49,9 @@ class MultiFieldContact {
 
   [[nodiscard]] int fields() const { return fields_; }
   [[nodiscard]] Index field_nodes() const { return nodes_; }
+  /// A decomposed run's rank stores another window of the grid: N nodes per field (the node
+  /// arrays are filled anew every step).
+  void use_window(Index nodes) { nodes_ = nodes; }
   [[nodiscard]] bool rigid(int f) const { return !rigid_velocity_[f].empty(); }
   [[nodiscard]] std::size_t contact_nodes() const { return entries_.size(); }
 

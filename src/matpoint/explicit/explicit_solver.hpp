@@ -198,6 +198,7 @@ class ExplicitSolver {
   void add_parallel_facts(RunFacts& facts) const {
     RankTraffic mine;
     mine.particles = static_cast<long>(sim_.particles.size());
+    mine.stored_nodes = static_cast<long>(sim_.grid.node_count);
     mine.threads = facts.threads;
     mine.step_wall = facts.step_wall;
     mine.step_cpu = facts.step_cpu;

@@ -41,7 +41,12 @@ class ExplicitStepper {
   || requires(const Stencils& s) { s.base.first_corner_outside; };
 
   explicit ExplicitStepper(Simulation<D>& sim)
-      : s_(sim), grid_(sim.grid), fmpm_(sim.solver.fmpm, sim.significant_mass), mls_(sim.solver.mls) {
+      : s_(sim),
+        whole_grid_(sim.grid),
+        field_count_(static_cast<Index>(sim.fields.mass.size()) / std::max<Index>(1, sim.grid.node_count)),
+        grid_(sim.grid),
+        fmpm_(sim.solver.fmpm, sim.significant_mass),
+        mls_(sim.solver.mls) {
     velocity_.resize(sim.fields.mass.size());
     if (sim.comm.distributed()) decompose();
     if constexpr (kFields) set_up_fields();
@@ -69,6 +74,11 @@ class ExplicitStepper {
     }
     step_dt_ = dt;
     stencils_.evaluate(s_.grid, s_.particles);
+    if (ranks_ && ranks_->hand_off.reach() != window_reach_) {  // the same decision on every rank
+      window_reach_ = ranks_->hand_off.reach();
+      fit_window();
+      stencils_.evaluate(s_.grid, s_.particles);  // node indices in the new window
+    }
     if (ranks_)  // the particles that arrived since the last sort, in the serial run's order
       brick_schedule().order_arrivals(ranks_->migration.keys(), s_.particles.id,
                                       ranks_->migration.sorted_prefix());
@@ -252,19 +262,54 @@ class ExplicitStepper {
   }
 
   /// The partition's hand-off, migration and owned nodes (the particles are left as they are).
+  /// The rank stores the whole grid until the first step's stencils tell how far they reach.
   void use_partition(SlabPartition<D> partition) {
     ranks_ = std::make_unique<Ranks>(s_.grid, std::move(partition), s_.comm);
-    claim_owned_nodes();
+    window_reach_ = {-1, -1};
+    fit_window();
     brick_schedule().boundary = &ranks_->hand_off;
   }
 
-  /// This rank's owned nodes (the node sums it reports) under the present partition: at the
-  /// start, after a re-partition and at a restart with the stored partition.
+  /// The grid window this rank stores (docs/scale-out.md §2): along the cut axis the node layers
+  /// its particles' stencils reach under the reach every rank agreed on (window_reach_; the whole
+  /// grid before the first agreement), every node along the others. Every node array and node
+  /// list follows it: the grid's fields and scratch, the velocity and thermal conditions, the
+  /// contact's and the stencils' node counts, the frictional heat that waits for the next step,
+  /// the owned range and the hand-off's lists (rebuilt at the next agree_reach). Called when the
+  /// partition or the agreed reach changes, between steps or right after the stencils' evaluation
+  /// (which is then repeated), never while a node array holds a step's values.
+  void fit_window() {
+    constexpr int kCut = SlabPartition<D>::kAxis;
+    const auto [below, above] = window_reach_;
+    auto [begin, end] = ranks_->partition.stored_nodes_of(s_.comm.rank(), below, above);
+    if (below < 0) begin = 0, end = whole_grid_.cells[kCut] + 1;
+    if (begin == end) end = begin + 1;  // a rank without cells: one node layer, never reached
+    const Grid<D> old = s_.grid;
+    s_.grid = whole_grid_.window(kCut, begin, end);
+    const Index n = s_.grid.node_count;
+    s_.fields.resize(field_count_ * n);
+    velocity_.assign(static_cast<std::size_t>(field_count_ * n), Vec<D>::Zero());
+    s_.conditions.use_window(s_.grid);
+    grid_ = s_.grid;
+    if constexpr (kFields) {
+      stencils_.field_nodes = n;
+      grid_.node_count = field_count_ * n;
+      s_.contact.use_window(n);
+    }
+    if (heat_.active()) heat_.use_window(s_, old);
+    ranks_->hand_off.partition_changed();
+    claim_owned_nodes();
+  }
+
+  /// This rank's owned nodes (the node sums it reports) under the present partition and window:
+  /// at the start, after a re-partition, at a restart with the stored partition, and whenever the
+  /// window changes.
   void claim_owned_nodes() {
+    constexpr int kCut = SlabPartition<D>::kAxis;
     const auto [first, end] = ranks_->partition.owned_nodes_of(s_.comm.rank());
-    const Index stride = s_.grid.stride[SlabPartition<D>::kAxis];
-    s_.owned_nodes_begin = first * stride;
-    s_.owned_nodes_end = end * stride;
+    const Index stride = s_.grid.stride[kCut];
+    s_.owned_nodes_begin = std::max(0, first - s_.grid.first[kCut]) * stride;
+    s_.owned_nodes_end = std::max(0, end - s_.grid.first[kCut]) * stride;
     s_.conditions.count_only(s_.owned_nodes_begin, s_.owned_nodes_end);
     count_owned_nodes_only();
   }
@@ -305,8 +350,7 @@ class ExplicitStepper {
     auto cut = SlabPartition<D>::balanced(s_.grid, whole, s_.comm.size());
     if (cut.first_layers() == partition.first_layers()) return;
     partition = std::move(cut);  // the hand-off and the migration hold a reference to it
-    ranks_->hand_off.partition_changed();
-    claim_owned_nodes();
+    fit_window();                // the new slab's nodes, under the reach agreed so far
     ranks_->migration.migrate(s_.particles);
     ++ranks_->repartitions;
   }
@@ -549,6 +593,9 @@ class ExplicitStepper {
   };
 
   Simulation<D>& s_;
+  Grid<D> whole_grid_;  // every node: the grid a decomposed run's windows are cut from
+  Index field_count_;   // grid velocity fields (bodies or materials in contact; 1 without contact)
+  std::pair<int, int> window_reach_{-1, -1};  // the agreed reach the window was fitted to
   std::unique_ptr<Ranks> ranks_;
   std::optional<std::pair<std::string, std::string>> pending_failure_;  // entity, what
   Stencils stencils_;

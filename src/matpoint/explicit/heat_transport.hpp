@@ -56,6 +56,21 @@ class HeatTransport {
     conditions_.count_only(sim.owned_nodes_begin, sim.owned_nodes_end, sim.grid.node_count);
   }
 
+  /// A decomposed run's rank stores another window of the grid (sim.grid, `old` the last one):
+  /// the thermal conditions' nodes are selected anew and the frictional heat waiting for the next
+  /// step is carried over by node (a node the last window did not store has none on this rank).
+  void use_window(const Simulation<D>& sim, const Grid<D>& old) {
+    if (!active_) return;
+    conditions_ = ThermalConditions<D>(sim.heat.conditions, sim.grid, fields_, sim.solver.shape);
+    count_only(sim);
+    const Index n = sim.grid.node_count, n_old = old.node_count;
+    std::vector<double> heat(static_cast<std::size_t>(fields_) * n, 0.0);
+    for (Index i = 0; i < n; ++i)
+      if (const Index k = sim.grid.node_index_in(old, i); k >= 0)
+        for (Index f = 0; f < fields_; ++f) heat[f * n + i] = node_heat_[f * n_old + k];
+    node_heat_ = std::move(heat);
+  }
+
   /// The frictional heat of this step by (multi-field) node, J; consumed by the next step().
   std::vector<double>& node_heat() { return node_heat_; }
 

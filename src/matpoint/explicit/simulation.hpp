@@ -64,10 +64,11 @@ struct Simulation {
   Vec<D> grid_momentum_difference = Vec<D>::Zero();
 
   // A decomposed explicit run (issue 23, docs/scale-out.md): the ranks, and the flat indices
-  // [owned_nodes_begin, owned_nodes_end) of the grid nodes this rank owns. Every rank stores the
-  // whole grid, but holds complete values only on the nodes its particles reach; sums over nodes
-  // that are reported (history, condition impulses, grid modes) count only the owned ones, so that
-  // a node two ranks store counts once. Serial: one rank that owns every node.
+  // [owned_nodes_begin, owned_nodes_end) of the grid nodes this rank owns. Each rank's `grid`
+  // stores a window of the nodes, those its particles reach (Grid::window, fitted by the
+  // ExplicitStepper); sums over nodes that are reported (history, condition impulses, grid modes)
+  // count only the owned ones, so that a node two ranks store counts once. Serial: one rank that
+  // stores and owns every node.
   Communicator comm;
   Index owned_nodes_begin = 0, owned_nodes_end = std::numeric_limits<Index>::max();
   [[nodiscard]] bool owns_node(Index node) const { return node >= owned_nodes_begin && node < owned_nodes_end; }

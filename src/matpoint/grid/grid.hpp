@@ -1,6 +1,7 @@
 // Uniform Cartesian background grid: geometry and node numbering.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -11,26 +12,55 @@ namespace matpoint {
 /// Nodes sit at origin + i * h, i = -ghost .. cells + ghost per direction. Ghost layers lie
 /// outside the user's domain and exist only so that wide bases (B-splines) have every node they
 /// need next to the domain edge; boundary conditions on a face apply to its ghost nodes too.
+///
+/// The grid *stores* a window of those nodes: per axis the integer coordinates first[a] ..
+/// first[a] + nodes[a] - 1, numbered x fastest from 0 (node_index, node_coords). A serial run stores
+/// every node (first = -ghost); a rank of a decomposed run stores the nodes its particles reach
+/// (window(), docs/scale-out.md §2), so that its node arrays and node loops shrink with the rank
+/// count. The geometry (origin, h, cells, contains, cell_index) is the whole grid's either way.
 template <int D>
 struct Grid {
   Vec<D> origin = Vec<D>::Zero();
   Vec<D> h = Vec<D>::Ones();
   std::array<int, D> cells{};
   int ghost = 0;
-  std::array<int, D> nodes{};     // per direction, ghosts included
-  std::array<Index, D> stride{};  // flat node index = sum (i_a + ghost) * stride_a
-  Index node_count = 0;
+  std::array<int, D> first{};     // per direction, the coordinate of the first stored node
+  std::array<int, D> nodes{};     // per direction, the stored nodes (ghosts included)
+  std::array<Index, D> stride{};  // flat node index = sum (i_a - first_a) * stride_a
+  Index node_count = 0;           // stored nodes
 
   Grid() = default;
   Grid(const Vec<D>& origin_, const Vec<D>& h_, const std::array<int, D>& cells_, int ghost_)
       : origin(origin_), h(h_), cells(cells_), ghost(ghost_) {
-    Index s = 1;
     for (int a = 0; a < D; ++a) {
+      first[a] = -ghost;
       nodes[a] = cells[a] + 1 + 2 * ghost;
-      stride[a] = s;
-      s *= nodes[a];
     }
-    node_count = s;
+    number_nodes();
+  }
+
+  /// The same grid storing only the node coordinates [begin, end) along `axis` (clamped to the
+  /// grid's nodes, ghosts included); the other axes keep their window.
+  [[nodiscard]] Grid window(int axis, int begin, int end) const {
+    Grid out = *this;
+    begin = std::max(begin, -ghost);
+    end = std::min(end, cells[axis] + 1 + ghost);
+    out.first[axis] = begin;
+    out.nodes[axis] = std::max(0, end - begin);
+    out.number_nodes();
+    return out;
+  }
+  /// True when the node of coordinates ijk is stored.
+  [[nodiscard]] bool stores(const std::array<int, D>& ijk) const {
+    for (int a = 0; a < D; ++a)
+      if (ijk[a] < first[a] || ijk[a] >= first[a] + nodes[a]) return false;
+    return true;
+  }
+  /// The stored node of coordinates ijk in grid `from`'s numbering (or -1 when `from` does not
+  /// store it): for carrying a node array over to another window.
+  [[nodiscard]] Index node_index_in(const Grid& from, Index n) const {
+    const auto ijk = node_coords(n);
+    return from.stores(ijk) ? from.node_index(ijk) : -1;
   }
 
   [[nodiscard]] Vec<D> domain_max() const {
@@ -38,17 +68,17 @@ struct Grid {
     for (int a = 0; a < D; ++a) m[a] = origin[a] + cells[a] * h[a];
     return m;
   }
-  /// Flat index of the node with (possibly negative) integer coordinates ijk.
+  /// Flat index of the stored node with (possibly negative) integer coordinates ijk.
   [[nodiscard]] Index node_index(const std::array<int, D>& ijk) const {
     Index n = 0;
-    for (int a = 0; a < D; ++a) n += static_cast<Index>(ijk[a] + ghost) * stride[a];
+    for (int a = 0; a < D; ++a) n += static_cast<Index>(ijk[a] - first[a]) * stride[a];
     return n;
   }
   /// Integer coordinates of a flat node index.
   [[nodiscard]] std::array<int, D> node_coords(Index n) const {
     std::array<int, D> ijk{};
     for (int a = D - 1; a >= 0; --a) {
-      ijk[a] = static_cast<int>(n / stride[a]) - ghost;
+      ijk[a] = static_cast<int>(n / stride[a]) + first[a];
       n %= stride[a];
     }
     return ijk;
@@ -89,6 +119,22 @@ struct Grid {
   }
   [[nodiscard]] double cell_volume() const { return h.prod(); }
   [[nodiscard]] double min_cell_size() const { return h.minCoeff(); }
+  /// Nodes of the whole grid (ghosts included), whatever the window.
+  [[nodiscard]] Index total_node_count() const {
+    Index n = 1;
+    for (int a = 0; a < D; ++a) n *= cells[a] + 1 + 2 * ghost;
+    return n;
+  }
+
+ private:
+  void number_nodes() {
+    Index s = 1;
+    for (int a = 0; a < D; ++a) {
+      stride[a] = s;
+      s *= nodes[a];
+    }
+    node_count = s;
+  }
 };
 
 }  // namespace matpoint

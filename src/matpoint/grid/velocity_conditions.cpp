@@ -24,8 +24,26 @@ bool node_selected(const VelocityConditionSpec& c, const Grid<D>& grid, Index no
 template <int D>
 VelocityConditions<D>::VelocityConditions(const std::vector<VelocityConditionSpec>& specs,
                                           const Grid<D>& grid)
-    : grid_(grid) {
-  for (const auto& c : specs) {
+    : specs_(specs), grid_(grid) {
+  select_nodes();
+}
+
+template <int D>
+void VelocityConditions<D>::use_window(const Grid<D>& grid) {
+  grid_ = grid;
+  const int fields = fields_;
+  entries_.clear(), functions_.clear(), walls_.clear(), faces_.clear();
+  touching_.clear(), held_.clear(), wall_entries_.clear();
+  one_sided_ = false;
+  fields_ = 1;
+  select_nodes();
+  if (fields > 1) replicate(fields);
+}
+
+template <int D>
+void VelocityConditions<D>::select_nodes() {
+  const Grid<D>& grid = grid_;
+  for (const auto& c : specs_) {
     std::vector<std::pair<int, int>> axis_function;  // (axis, function)
     switch (c.kind) {
       case ConditionKind::MovingWall:

@@ -86,6 +86,11 @@ class VelocityConditions {
   /// N nodes (field f at flat indices f N .. f N + N - 1), walls included.
   void replicate(int fields);
 
+  /// A decomposed run's rank stores another window of the grid (Grid::window): the conditions'
+  /// nodes are selected anew among the stored ones (in every field). The counted range
+  /// (count_only) is the caller's to set again.
+  void use_window(const Grid<D>& grid);
+
   [[nodiscard]] std::size_t size() const { return entries_.size() + wall_entries_.size(); }
 
  private:
@@ -110,6 +115,8 @@ class VelocityConditions {
     double value;
   };
   void select_field_wall_nodes(double t, const std::vector<double>& mass, double mass_floor, Index offset);
+  /// The nodes of grid_ (one field) each condition of specs_ holds.
+  void select_nodes();
 
   std::vector<Entry> entries_;
   std::vector<TimeFunction> functions_;
@@ -120,6 +127,7 @@ class VelocityConditions {
   std::vector<char> touching_;        // per node (every field): a body touches a one-sided face there
   mutable std::vector<char> held_;    // per entry: this step's one-sided decision (apply() caches it)
   mutable std::vector<double> free_;  // apply()'s scratch: each condition's component before it
+  std::vector<VelocityConditionSpec> specs_;
   Grid<D> grid_;
   int fields_ = 1;
 };

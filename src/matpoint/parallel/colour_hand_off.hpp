@@ -45,8 +45,12 @@ class ColourHandOff final : public BrickBoundary {
     if (below != below_ || above != above_ || peers_.empty()) build(below, above);
   }
 
-  /// The partition changed (a re-partition): the lists are rebuilt at the next agree_reach.
+  /// The partition or this rank's grid window changed: the lists are rebuilt at the next
+  /// agree_reach (they are flat indices of the window).
   void partition_changed() { peers_.clear(); }
+
+  /// The reach every rank agreed on at the last agree_reach ({-1, -1} before the first).
+  [[nodiscard]] std::pair<int, int> reach() const { return {below_, above_}; }
 
   void after_colour(int colour, const NodeArray* arrays, int count) const override {
     const auto& peers = peers_[static_cast<std::size_t>(colour)];

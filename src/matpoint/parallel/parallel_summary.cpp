@@ -26,8 +26,9 @@ nlohmann::json parallel_summary(const Communicator& comm, const RankTraffic& min
   const double per_step = steps > 0 ? 1.0 / static_cast<double>(steps) : 0.0;
   const double wait_cpu = mine.halo.waiting_cpu + mine.migration.waiting_cpu + mine.collectives.waiting_cpu;
   // Each rank's row, gathered on every rank in rank order.
-  const std::array<std::pair<const char*, double>, 21> row{{
+  const std::array<std::pair<const char*, double>, 22> row{{
       {"particles_per_rank", static_cast<double>(mine.particles)},
+      {"stored_nodes_per_rank", static_cast<double>(mine.stored_nodes)},
       {"threads_per_rank", static_cast<double>(mine.threads)},
       {"cpus_per_rank", static_cast<double>(available_cpus())},
       {"step_wall_seconds", mine.step_wall},
@@ -70,6 +71,9 @@ nlohmann::json parallel_summary(const Communicator& comm, const RankTraffic& min
       out[name] = {{"min", static_cast<long>(lo)},
                    {"max", static_cast<long>(hi)},
                    {"imbalance", sum > 0 ? hi * static_cast<double>(ranks) / sum : 1.0}};
+    } else if (name == "stored_nodes_per_rank") {
+      out[name] = {
+          {"min", static_cast<long>(lo)}, {"max", static_cast<long>(hi)}, {"sum", static_cast<long>(sum)}};
     } else if (name == "threads_per_rank" || name == "cpus_per_rank") {
       out[name] = {{"min", static_cast<int>(lo)}, {"max", static_cast<int>(hi)}};
     } else if (name == "step_wall_seconds" || name == "step_cpu_seconds" || name == "work_cpu_seconds") {

@@ -13,6 +13,7 @@ namespace matpoint {
 /// One rank's counts at the end of a run.
 struct RankTraffic {
   long particles = 0;
+  long stored_nodes = 0;  // the grid nodes of its window (Grid::window), one field's
   int threads = 1;
   double step_wall = 0.0;  // wall seconds in the steps
   double step_cpu = 0.0;   // CPU seconds of the process in the steps (all its threads)

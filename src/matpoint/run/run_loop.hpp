@@ -254,7 +254,7 @@ template <int D>
 void add_state_facts(const Simulation<D>& sim, RunFacts& facts) {
   facts.dimension = D;
   facts.particles = static_cast<std::size_t>(sim.comm.sum(static_cast<long>(sim.particles.size())));
-  facts.nodes = sim.grid.node_count;
+  facts.nodes = sim.grid.total_node_count();  // a decomposed run's rank stores a window of them
   facts.steps = sim.step;
   facts.time = sim.time;
   facts.threads = current_threads();
