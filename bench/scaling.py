@@ -204,9 +204,11 @@ def model_terms(n, grid_nodes, cal, costs, halo_messages, halo_bytes, migration_
 
 
 def predict_measured(run, cal, costs):
-    """The model's CPU time per step for a measured 2-rank run (every rank loops over the whole grid)."""
+    """The model's CPU time per step for a measured 2-rank run (each rank loops over its window of the
+    grid: the largest window counted by the run, or the whole grid for a build before the window)."""
     p = run["summary"]["parallel"]
-    terms = model_terms(p["particles_per_rank"]["max"], nodes(run["point"]["spec"]), cal, costs,
+    stored = p.get("stored_nodes_per_rank", {}).get("max", nodes(run["point"]["spec"]))
+    terms = model_terms(p["particles_per_rank"]["max"], stored, cal, costs,
                         p["halo_messages_per_step"]["max"], p["halo_bytes_per_step"]["max"],
                         p["migration_messages_per_step"]["max"], p["migration_bytes_per_step"]["max"],
                         p["collectives_per_step"]["max"] + 1, p["ranks"], LOCAL_LATENCY, LOCAL_BANDWIDTH)
@@ -410,9 +412,9 @@ def report(args, pts, runs, elapsed, finished=None):
       "particle-step, from the 1-rank run;")
     w(f"- N_n: grid nodes the rank loops over; c_n: CPU seconds per node-step, from the 1-rank run on a "
       f"grid {WIDE} times as long along x with the same body (the difference of the two step times "
-      "over the difference of their node counts). **Today every rank stores and loops over the "
-      "whole grid** (no window yet, docs/scale-out.md §17 stage 2), so N_n is the whole grid's node "
-      "count on every rank; with the window of §2 it is the rank's owned and ghost nodes. Both are "
+      "over the difference of their node counts). Each rank stores and loops over its **window** of "
+      "the grid (docs/scale-out.md §2, since session 27): its owned and ghost nodes, counted by the "
+      "run (`stored_nodes_per_rank`); before it every rank looped over the whole grid. Both are "
       "modelled;")
     w("- M_h, B_h: the hand-off's messages and bytes per step of the rank (counted); a, b: latency "
       "and bandwidth; c_h: the packing and unpacking per byte;")
@@ -443,7 +445,7 @@ def report(args, pts, runs, elapsed, finished=None):
       "independent check of c_m and c_h, all points of c_p and c_n. Then the model's wire time "
       "(messages, bytes, collectives at this machine's a and b) beside the measured wait:")
     w("")
-    w("| point | particles (largest rank) | T particles | T grid (whole grid) | T own exchange work | model work | measured work CPU | model / measured | model wire | measured wait, CPU / wall |")
+    w("| point | particles (largest rank) | T particles | T grid (the window) | T own exchange work | model work | measured work CPU | model / measured | model wire | measured wait, CPU / wall |")
     w("|---|---|---|---|---|---|---|---|---|---|")
     ratios = []
     for k in cols:
@@ -568,10 +570,10 @@ def report(args, pts, runs, elapsed, finished=None):
       f"slabs) is lost mostly to {largest} ({overhead[largest] / cw['t'] * 100:.1f} % of the step), "
       "not to the network, and it hardly falls from 64 to 1024 ranks (only the collectives grow, as "
       "log2 P).")
-    w(f"- **Without the window** every rank loops over and stores the whole grid: the cube at 64 ranks "
-      f"runs at {cwhole64['efficiency'] * 100:.0f} %, at 1024 at {cwhole['efficiency'] * 100:.0f} % with "
-      f"{cwhole['grid_gib']:.0f} GiB of grid per rank. The window of docs/scale-out.md §2 is the "
-      "precondition for any scale-out beyond a few ranks.")
+    w(f"- **Without the window** (the code before session 27) every rank looped over and stored the "
+      f"whole grid: the cube at 64 ranks would run at {cwhole64['efficiency'] * 100:.0f} %, at 1024 at "
+      f"{cwhole['efficiency'] * 100:.0f} % with {cwhole['grid_gib']:.0f} GiB of grid per rank. The window "
+      "of docs/scale-out.md §2, built since, is the precondition for any scale-out beyond a few ranks.")
     w(f"- The migration's own work costs c_m = {costs[3]['c_m'] * 1e9:.0f} ns per particle-step in 3-D "
       f"({costs[2]['c_m'] * 1e9:.0f} ns in 2-D) against c_p = {cal[3]['c_p'] * 1e9:.0f} ns: every step "
       "it finds every particle's owner and compacts every array even when no particle leaves. Testing "

@@ -88,9 +88,10 @@ Particles run(const Spec& spec, long steps, const Communicator& comm, long* most
   if (repartitions != nullptr) *repartitions = solver.repartitions();
   // The grid window (docs/scale-out.md §2): on several ranks none stores the whole grid.
   const Grid<2>& grid = solver.sim().grid;
-  if (comm.size() > 1)
+  if (comm.size() > 1) {
     EXPECT_LT(comm.max(static_cast<long>(grid.node_count)), static_cast<long>(grid.total_node_count()))
         << "the largest window of any rank";
+  }
   return gather(solver.sim(), comm);
 }
 
