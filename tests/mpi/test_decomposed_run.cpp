@@ -195,9 +195,10 @@ TEST(DecomposedRun, ReCutAsTheParticlesMoveEqualsSerialRunBitwise) {
 // Stage 3 (docs/scale-out.md §17): multi-field contact, coupled heat, one-sided faces, dynamic FMPM.
 
 // The two disks of examples/two-disks-contact (Nairn 2026 §3.2.2: off-centre impact with Coulomb
-// friction, FMPM(4), CPDI1) with the "average" normals (the example's logistic normals are refused
-// on several ranks), through the impact: the contact nodes lie on the rank boundaries (the slabs
-// are along y; the disks meet at y = 25 mm).
+// friction, FMPM(4), CPDI1), through the impact: the contact nodes lie on the rank boundaries (the
+// slabs are along y; the disks meet at y = 25 mm). With the "average" normals, and with the
+// example's own logistic-regression normals, whose fits at the shared nodes read the particles of
+// both ranks (explicit/seen_particles.hpp).
 const char* const kContactDisks = R"({
   "grid": { "dim": 2, "min": [0, 0], "max": [0.06, 0.05], "cell_size": 0.001 },
   "materials": [ { "name": "polymer", "model": "neo_hookean", "volumetric": "half_j_squared",
@@ -230,6 +231,16 @@ TEST(DecomposedRun, ContactDisksWithFrictionAndFmpm4EqualSerialRunBitwise) {
                     R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": 4 }, "basis": "cpdi1",
                          "courant": 0.2, "end_time": 1.6e-4 })",
                     false),
+      700);
+}
+
+TEST(DecomposedRun, ContactDisksWithLogisticNormalsEqualSerialRunBitwise) {
+  expect_equal_to_serial<FieldStencils<2, CpdiStencils<2, HatKernel, CpdiDomain::Parallelogram>>>(
+      contact_disks(
+          R"({ "law": "coulomb", "friction": 0.3, "normals": "logistic_regression", "fmpm_method": "net" })",
+          R"({ "scheme": "usl", "transfer": "fmpm", "fmpm": { "order": 4 }, "basis": "cpdi1",
+                         "courant": 0.2, "end_time": 1.6e-4 })",
+          false),
       700);
 }
 

@@ -18,6 +18,7 @@
 
 #include "matpoint/explicit/contact_law.hpp"
 #include "matpoint/explicit/logistic_normal.hpp"
+#include "matpoint/explicit/seen_particles.hpp"
 #include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/io/spec.hpp"
@@ -65,6 +66,15 @@ class MultiFieldContact {
     counted_begin_ = begin, counted_end_ = end;
   }
 
+  /// A decomposed run's logistic-regression normals (explicit/seen_particles.hpp): the node layers
+  /// along `axis` that this rank shares with each other rank, and the particles' sort keys (their
+  /// serial storage order with the ids), which the fit of a shared node reads in merged order.
+  void share_nodes(std::vector<SharedNodeLayers> shared, int axis, const std::vector<Index>* sort_keys) {
+    shared_ = std::move(shared);
+    shared_axis_ = axis;
+    sort_keys_ = sort_keys;
+  }
+
   [[nodiscard]] Vec<D> rigid_velocity(int f, double t) const {
     Vec<D> v;
     for (int a = 0; a < D; ++a) v[a] = rigid_velocity_[f][a](t);
@@ -103,14 +113,10 @@ class MultiFieldContact {
     };
     stencils.brick_order().for_each_particle(add_particle,
                                              std::span<const NodeArray>(written, positions ? 2 : 1));
-    if (logistic) {  // refused on several ranks: it needs the other ranks' particles
-      collect_start();
-      for (std::size_t p = 0; p < particles.size(); ++p)
-        stencils.for_each_node(grid, p, [&](Index node, double, const auto&) { collect(node, p); });
-    }
+    if (logistic) collect_seen_particles(grid, stencils, particles);
     for (auto& e : entries_) {
       set_normal(e, mass);
-      if (logistic && e.kind != Kind::Rest) set_logistic_normal(e, grid, particles);
+      if (logistic && e.kind != Kind::Rest) set_logistic_normal(e, grid);
     }
   }
 
@@ -163,7 +169,8 @@ class MultiFieldContact {
   /// of task 3.a; on an FMPM step also task 1.a's and every increment's correction of the loop)
   /// times the slip left in `velocity`: v+(1) right after task 3.a on a FLIP step, the final v+(k)
   /// after an FMPM loop. A decomposed run: this rank's owned nodes only (decompose()).
-  [[nodiscard]] double friction_work(const std::vector<double>& mass, const std::vector<Vec<D>>& velocity) const {
+  [[nodiscard]] double friction_work(const std::vector<double>& mass,
+                                     const std::vector<Vec<D>>& velocity) const {
     const auto v = [&](Index i) -> Vec<D> { return velocity[i]; };
     double work = 0.0;
     for (const auto& e : entries_)
@@ -282,47 +289,63 @@ class MultiFieldContact {
     }
   }
 
-  /// Logistic regression: which particles see each contact node (grid-node slots, reused).
-  void collect_start() {
+  /// Logistic regression: the particles that see each contact node (grid-node slots, reused), in
+  /// the serial storage order; a decomposed run adds the other ranks' particles that see the nodes
+  /// it shares with them and orders each list by (key, id), the serial order.
+  template <class Stencils>
+  void collect_seen_particles(const Grid<D>& grid, const Stencils& stencils,
+                              const ParticleSet<D>& particles) {
     slot_of_node_.assign(static_cast<std::size_t>(nodes_), -1);
-    int slots = 0;
+    slot_node_.clear();
     for (const auto& e : entries_)
-      if (slot_of_node_[e.node] < 0) slot_of_node_[e.node] = slots++;
-    if (seen_by_.size() < static_cast<std::size_t>(slots)) seen_by_.resize(slots);
-    for (int k = 0; k < slots; ++k) seen_by_[k].clear();
-  }
-
-  void collect(Index node, std::size_t p) {
-    const Index i = node % nodes_;
-    const int slot = slot_of_node_[i];
-    if (slot >= 0) seen_by_[slot].push_back({p, static_cast<int>(node / nodes_)});
+      if (slot_of_node_[e.node] < 0) {
+        slot_of_node_[e.node] = static_cast<int>(slot_node_.size());
+        slot_node_.push_back(e.node);
+      }
+    if (seen_.size() < slot_node_.size()) seen_.resize(slot_node_.size());
+    for (std::size_t k = 0; k < slot_node_.size(); ++k) seen_[k].clear();
+    const bool keys = sort_keys_ != nullptr && comm_.distributed();
+    for (std::size_t p = 0; p < particles.size(); ++p)
+      stencils.for_each_node(grid, p, [&](Index node, double, const auto&) {
+        const int slot = slot_of_node_[node % nodes_];
+        if (slot < 0) return;
+        seen_[static_cast<std::size_t>(slot)].push_back({keys ? (*sort_keys_)[p] : 0, particles.id[p],
+                                                         static_cast<int>(node / nodes_), particles.x[p],
+                                                         particles.F[p], particles.size0[p]});
+      });
+    if (!comm_.distributed()) return;
+    seen_.resize(slot_node_.size());
+    exchange_seen_particles<D>(comm_, grid, shared_axis_, shared_, slot_node_, slot_of_node_, seen_);
+    for (auto& list : seen_)
+      std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.before(b); });
   }
 
   /// Nairn's normal and gap: the regression normal of the particles of a (-1) and b (+1) that see
   /// the node, and delta_n = min_b (x . n - R(n)) - max_a (x . n + R(n)) with R(n) the deformed
   /// half-extent of the particle along n (extraction §2.5). In contact needs delta_n below
   /// `separation` cells (default 0). A failed fit keeps the average normal and its test.
-  void set_logistic_normal(Entry& e, const Grid<D>& grid, const ParticleSet<D>& particles) {
+  void set_logistic_normal(Entry& e, const Grid<D>& grid) {
     const Vec<D> origin = grid.node_position(e.node);
     const Vec<D> inverse_h = grid.h.cwiseInverse();
+    const auto& seen = seen_[static_cast<std::size_t>(slot_of_node_[e.node])];
     points_.clear();
-    for (const auto& s : seen_by_[slot_of_node_[e.node]]) {
+    for (const auto& s : seen) {
       if (s.field != e.a && s.field != e.b) continue;
-      points_.push_back(
-          {(particles.x[s.particle] - origin).cwiseProduct(inverse_h), s.field == e.a ? -1.0 : 1.0});
+      points_.push_back({(s.x - origin).cwiseProduct(inverse_h), s.field == e.a ? -1.0 : 1.0});
     }
     const auto fit = logistic_normal<D>(std::span<const LabelledPoint<D>>(points_));
     if (!fit.found) {
-      ++logistic_fallbacks_;
+      // A node two ranks store fails on both: the rank that owns it counts it.
+      if (e.node >= counted_begin_ && e.node < counted_end_) ++logistic_fallbacks_;
       return;
     }
     e.normal = fit.normal;
     double a_front = -std::numeric_limits<double>::infinity(),
            b_back = std::numeric_limits<double>::infinity();
-    for (const auto& s : seen_by_[slot_of_node_[e.node]]) {
+    for (const auto& s : seen) {
       if (s.field != e.a && s.field != e.b) continue;
-      const double along = particles.x[s.particle].dot(e.normal);
-      const double extent = particles.half_extent(s.particle, e.normal);
+      const double along = s.x.dot(e.normal);
+      const double extent = s.half_extent(e.normal);
       if (s.field == e.a)
         a_front = std::max(a_front, along + extent);
       else
@@ -399,14 +422,14 @@ class MultiFieldContact {
   std::vector<std::vector<TimeFunction>> rigid_velocity_;  // by field; empty: deformable
   std::vector<ContactLawSpec> laws_;                       // by field pair (a * fields + b)
   std::vector<Entry> entries_;
-  std::vector<Vec<D>> gradient_, position_;  // by multi-field node: sum w_p grad S, sum M_p S x_p
-  struct Seen {
-    std::size_t particle;
-    int field;
-  };
-  std::vector<int> slot_of_node_;           // logistic regression: grid node -> slot, or -1
-  std::vector<std::vector<Seen>> seen_by_;  // by slot: the particles whose stencil has the node
-  std::vector<LabelledPoint<D>> points_;    // scratch for one fit
+  std::vector<Vec<D>> gradient_, position_;         // by multi-field node: sum w_p grad S, sum M_p S x_p
+  std::vector<int> slot_of_node_;                   // logistic regression: grid node -> slot, or -1
+  std::vector<Index> slot_node_;                    // by slot: its grid node
+  std::vector<std::vector<SeenParticle<D>>> seen_;  // by slot: the particles that see the node
+  std::vector<SharedNodeLayers> shared_;            // a decomposed run: the layers shared per rank
+  int shared_axis_ = 0;                             // the axis of those layers (the cut)
+  const std::vector<Index>* sort_keys_ = nullptr;   // a decomposed run: the particles' sort keys
+  std::vector<LabelledPoint<D>> points_;            // scratch for one fit
   std::size_t logistic_fallbacks_ = 0;
   Communicator comm_;  // a decomposed run's ranks (decompose()); one rank by default
   Index counted_begin_ = 0, counted_end_ = std::numeric_limits<Index>::max();  // friction_work's nodes

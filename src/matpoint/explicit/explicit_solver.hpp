@@ -186,7 +186,8 @@ class ExplicitSolver {
       facts.fmpm = stepper_.fmpm_statistics();
     if (s.mapping != Mapping::MPM) facts.mls = stepper_.mls_statistics();
     if (sim_.has_contact && spec_.contact.normals == ContactNormals::Logistic)
-      facts.logistic_fallbacks = sim_.contact.logistic_fallbacks();
+      facts.logistic_fallbacks =  // every rank counts its owned nodes'
+          static_cast<std::size_t>(sim_.comm.sum(static_cast<long>(sim_.contact.logistic_fallbacks())));
     if (auto warning = capped_.warning(sim_.comm); !warning.empty())
       facts.warnings.push_back(std::move(warning));
     if (sim_.comm.distributed()) add_parallel_facts(facts);

@@ -299,6 +299,24 @@ class ExplicitStepper {
     if (heat_.active()) heat_.use_window(s_, old);
     ranks_->hand_off.partition_changed();
     claim_owned_nodes();
+    if constexpr (kFields) share_contact_nodes(below, above);
+  }
+
+  /// The node layers this rank stores together with each other rank (for the logistic contact
+  /// normals of the nodes near the rank boundaries: explicit/seen_particles.hpp).
+  void share_contact_nodes(int below, int above) {
+    std::vector<SharedNodeLayers> shared;
+    const int me = s_.comm.rank();
+    if (below >= 0) {
+      const auto mine = ranks_->partition.stored_nodes_of(me, below, above);
+      for (int r = 0; r < s_.comm.size(); ++r) {
+        if (r == me) continue;
+        const auto theirs = ranks_->partition.stored_nodes_of(r, below, above);
+        const int begin = std::max(mine.first, theirs.first), end = std::min(mine.second, theirs.second);
+        if (begin < end) shared.push_back({r, begin, end});
+      }
+    }
+    s_.contact.share_nodes(std::move(shared), SlabPartition<D>::kAxis, &ranks_->migration.keys());
   }
 
   /// This rank's owned nodes (the node sums it reports) under the present partition and window:

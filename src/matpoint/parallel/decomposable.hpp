@@ -12,8 +12,9 @@
 namespace matpoint {
 
 /// Throws InputError (exit 2, before anything runs) for every part of `spec` that a run on
-/// `ranks` > 1 ranks cannot do yet: the logistic-regression contact normals and the contact
-/// conductance of coupled heat (both read the particles of other ranks), the MLS mappings. One
+/// `ranks` > 1 ranks cannot do yet: the contact conductance of coupled heat (it reads the particles
+/// of other ranks) and the MLS mappings (since session 27 the logistic-regression contact normals
+/// run on ranks: explicit/seen_particles.hpp). One
 /// rank: nothing is refused. (Checkpoints and restarts work on any rank count: one piece per rank
 /// and a manifest, io/checkpoint.hpp.)
 inline void check_decomposable(const Spec& spec, int ranks) {
@@ -24,10 +25,6 @@ inline void check_decomposable(const Spec& spec, int ranks) {
   const auto refuse = [&](std::string path, std::string value) {
     issues.push_back({std::move(path), std::move(value), expected});
   };
-  if (spec.contact.enabled && spec.contact.normals == ContactNormals::Logistic)
-    refuse("contact.normals",
-           "\"logistic_regression\" (the default; it fits the particles of every rank that see a node: "
-           "\"average\" or \"mass_gradient\" run on several ranks)");
   if (spec.heat.enabled && spec.contact.enabled && spec.heat.contact == ThermalContact::Conductance)
     refuse("heat.contact", "\"conductance\" (its contact areas sum the particles' domains in storage order)");
   if (spec.solver.mapping != Mapping::MPM)

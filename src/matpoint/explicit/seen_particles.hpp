@@ -1,0 +1,106 @@
+// The particles that see a grid node, for the logistic-regression contact normals (Nairn 2026
+// extraction §2.5; explicit/contact.hpp) in a decomposed run (issue 23, docs/scale-out.md §17
+// stage 5): a contact node near a rank boundary is seen by particles of two ranks, and its fit must
+// read all of them in the serial run's order to give the serial normal to the bit.
+//
+// Each rank lists, per contact node, its own particles that see it (SeenParticle: what the fit and
+// the gap read of a particle, and its serial storage order (key, id)); for the nodes that another
+// rank stores too (SharedNodeLayers, from the two ranks' grid windows) it sends that list to the
+// other rank, and appends what it receives. Sorted by (key, id), the merged list is the serial
+// run's: the serial run stores its particles in (brick-major cell at the last sort, id) order, and
+// a decomposed run carries each particle's key with it (parallel/particle_migration.hpp).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
+#include <vector>
+
+#include "matpoint/core/types.hpp"
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/parallel/communicator.hpp"
+
+namespace matpoint {
+
+/// A particle that sees a node: its field, position and domain (F, size0: the half-extent of the
+/// gap, ParticleSet::half_extent), and its place in the serial storage order.
+template <int D>
+struct SeenParticle {
+  Index key = 0;  // brick-major cell at the last sort
+  long id = 0;
+  int field = 0;
+  Vec<D> x = Vec<D>::Zero();
+  Mat<D> F = Mat<D>::Identity();
+  Vec<D> size0 = Vec<D>::Zero();
+
+  /// ParticleSet::half_extent's arithmetic: the deformed half-extent along n.
+  [[nodiscard]] double half_extent(const Vec<D>& n) const {
+    return 0.5 * (F.transpose() * n).cwiseAbs().dot(size0);
+  }
+  [[nodiscard]] bool before(const SeenParticle& other) const {
+    return key != other.key ? key < other.key : id < other.id;
+  }
+};
+
+/// The node layers [begin, end) along `axis` that this rank and `rank` both store.
+struct SharedNodeLayers {
+  int rank = 0;
+  int begin = 0, end = 0;
+};
+
+/// Sends, for every listed node that another rank stores too, this rank's seen particles to it,
+/// and appends the other ranks' to the node's list. A collective (every rank calls it).
+/// `nodes[k]`: the grid node (of this rank's window) of list k; `slot_of_node`: its inverse (-1 for
+/// a node without a list).
+template <int D>
+void exchange_seen_particles(const Communicator& comm, const Grid<D>& grid, int axis,
+                             const std::vector<SharedNodeLayers>& shared, const std::vector<Index>& nodes,
+                             const std::vector<int>& slot_of_node,
+                             std::vector<std::vector<SeenParticle<D>>>& seen) {
+  std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
+  const auto append = [](std::vector<char>& bytes, const auto& value) {
+    static_assert(std::is_standard_layout_v<std::remove_cvref_t<decltype(value)>>);
+    const std::size_t at = bytes.size();
+    bytes.resize(at + sizeof(value));
+    std::memcpy(bytes.data() + at, &value, sizeof(value));
+  };
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    if (seen[k].empty()) continue;
+    const std::array<int, D> ijk = grid.node_coords(nodes[k]);
+    for (const SharedNodeLayers& s : shared) {
+      if (ijk[axis] < s.begin || ijk[axis] >= s.end) continue;
+      auto& bytes = out[static_cast<std::size_t>(s.rank)];
+      append(bytes, ijk);
+      append(bytes, seen[k].size());
+      for (const SeenParticle<D>& p : seen[k]) append(bytes, p);
+    }
+  }
+  const auto arrived = comm.exchange(out);
+  for (const std::vector<char>& bytes : arrived) {
+    std::size_t at = 0;
+    const auto take = [&](auto& value) {
+      if (at + sizeof(value) > bytes.size()) throw std::logic_error("seen particles: a message too short");
+      std::memcpy(static_cast<void*>(&value), bytes.data() + at, sizeof(value));
+      at += sizeof(value);
+    };
+    while (at < bytes.size()) {
+      std::array<int, D> ijk{};
+      std::size_t count = 0;
+      take(ijk);
+      take(count);
+      // Both ranks find the same contact nodes on the nodes they both store (complete sums), so
+      // the node has a list here; a node without one would be a broken invariant.
+      const int k = grid.stores(ijk) ? slot_of_node[static_cast<std::size_t>(grid.node_index(ijk))] : -1;
+      if (k < 0) throw std::logic_error("seen particles: a shared node that is no contact node here");
+      for (std::size_t q = 0; q < count; ++q) {
+        SeenParticle<D> p;
+        take(p);
+        seen[static_cast<std::size_t>(k)].push_back(p);
+      }
+    }
+  }
+}
+
+}  // namespace matpoint
