@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -242,11 +243,12 @@ template <int D>
 void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles, std::vector<Index>* sorted_cells) {
   const std::size_t n = particles.size();
   // Cells in brick-major order: the particles of a brick of the scatter's schedule lie together.
-  const Index cell_count = BrickSchedule<D>::brick_major_cell_count(grid);
   std::vector<Index> cell(n);
   bool sorted = true;
+  Index lowest = std::numeric_limits<Index>::max(), highest = 0;
   for (std::size_t p = 0; p < n; ++p) {
     cell[p] = BrickSchedule<D>::brick_major_cell(grid, grid.cell_coords(particles.x[p]));
+    lowest = std::min(lowest, cell[p]), highest = std::max(highest, cell[p]);
     if (p > 0 && (cell[p] < cell[p - 1] || (cell[p] == cell[p - 1] && particles.id[p] < particles.id[p - 1])))
       sorted = false;
   }
@@ -254,8 +256,11 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles, std::vector<In
     if (sorted_cells != nullptr) *sorted_cells = std::move(cell);
     return;
   }
+  // A counting sort over the cells [lowest, highest] that hold particles: a rank of a decomposed
+  // run counts over its own slab (its particles' cells, brick-major), not over the whole grid.
+  const Index cell_count = highest - lowest + 1;
   std::vector<Index> start(cell_count + 1, 0);
-  for (auto c : cell) ++start[c + 1];
+  for (auto& c : cell) ++start[(c -= lowest) + 1];
   for (Index c = 0; c < cell_count; ++c) start[c + 1] += start[c];
   std::vector<Index> order(n);
   for (std::size_t p = 0; p < n; ++p) order[start[cell[p]]++] = static_cast<Index>(p);
@@ -270,7 +275,7 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles, std::vector<In
                  [&order](const char*, auto& array, std::size_t count) { permute(order, array, count); });
   if (sorted_cells != nullptr) {
     sorted_cells->resize(n);
-    for (std::size_t q = 0; q < n; ++q) (*sorted_cells)[q] = cell[order[q]];
+    for (std::size_t q = 0; q < n; ++q) (*sorted_cells)[q] = cell[order[q]] + lowest;
   }
 }
 
