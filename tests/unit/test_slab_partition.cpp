@@ -70,6 +70,21 @@ TEST(SlabPartition, StoredNodesCoverTheStencilsOfTheOwnedCells) {
       << "a rank without cells (5 brick layers, 8 ranks) stores no node";
 }
 
+// The node layers two ranks both store: rank 0 (cells 0-7) stores nodes 0-9 with 2 layers above,
+// rank 1 (cells 8-23) nodes 7-25 with 1 below: 7, 8, 9 are shared; ranks 0 and 2 share none.
+TEST(SlabPartition, SharedNodesAreWhereTwoWindowsOverlap) {
+  const Grid<2> grid = grid_of(8, 40);
+  std::vector<std::array<int, 2>> cells;
+  for (int j = 0; j < 40; ++j) cells.push_back({0, j});
+  const auto slabs = SlabPartition<2>::balanced(grid, cells, 3);
+  ASSERT_EQ(slabs.cells_of(0), std::make_pair(0, 8));
+  ASSERT_EQ(slabs.cells_of(1), std::make_pair(8, 24));
+  EXPECT_EQ(slabs.shared_nodes_of(0, 1, /*below=*/1, /*above=*/2), std::make_pair(7, 10));
+  EXPECT_EQ(slabs.shared_nodes_of(1, 0, 1, 2), std::make_pair(7, 10));
+  const auto [begin, end] = slabs.shared_nodes_of(0, 2, 1, 2);
+  EXPECT_GE(begin, end) << "ranks 0 and 2 store no node together";
+}
+
 // The cut from per-layer counts (a re-partition's one reduction) is the cut from the particles'
 // cells, and a stored cut (first_layers, as a checkpoint keeps it) gives the same owners back.
 TEST(SlabPartition, CountsPerLayerAndStoredLayersGiveTheSameCut) {

@@ -13,13 +13,12 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <stdexcept>
-#include <type_traits>
 #include <vector>
 
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/parallel/bytes.hpp"
 #include "matpoint/parallel/communicator.hpp"
 
 namespace matpoint {
@@ -60,45 +59,30 @@ void exchange_seen_particles(const Communicator& comm, const Grid<D>& grid, int 
                              const std::vector<int>& slot_of_node,
                              std::vector<std::vector<SeenParticle<D>>>& seen) {
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
-  const auto append = [](std::vector<char>& bytes, const auto& value) {
-    static_assert(std::is_standard_layout_v<std::remove_cvref_t<decltype(value)>>);
-    const std::size_t at = bytes.size();
-    bytes.resize(at + sizeof(value));
-    std::memcpy(bytes.data() + at, &value, sizeof(value));
-  };
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     if (seen[k].empty()) continue;
     const std::array<int, D> ijk = grid.node_coords(nodes[k]);
     for (const SharedNodeLayers& s : shared) {
       if (ijk[axis] < s.begin || ijk[axis] >= s.end) continue;
-      auto& bytes = out[static_cast<std::size_t>(s.rank)];
-      append(bytes, ijk);
-      append(bytes, seen[k].size());
-      for (const SeenParticle<D>& p : seen[k]) append(bytes, p);
+      auto& message = out[static_cast<std::size_t>(s.rank)];
+      bytes::append(message, ijk);
+      bytes::append(message, seen[k].size());
+      for (const SeenParticle<D>& p : seen[k]) bytes::append(message, p);
     }
   }
   const auto arrived = comm.exchange(out);
-  for (const std::vector<char>& bytes : arrived) {
+  constexpr const char* kWhat = "seen particles";
+  for (const std::vector<char>& message : arrived) {
     std::size_t at = 0;
-    const auto take = [&](auto& value) {
-      if (at + sizeof(value) > bytes.size()) throw std::logic_error("seen particles: a message too short");
-      std::memcpy(static_cast<void*>(&value), bytes.data() + at, sizeof(value));
-      at += sizeof(value);
-    };
-    while (at < bytes.size()) {
-      std::array<int, D> ijk{};
-      std::size_t count = 0;
-      take(ijk);
-      take(count);
+    while (at < message.size()) {
+      const auto ijk = bytes::take<std::array<int, D>>(message, at, kWhat);
+      const auto count = bytes::take<std::size_t>(message, at, kWhat);
       // Both ranks find the same contact nodes on the nodes they both store (complete sums), so
       // the node has a list here; a node without one would be a broken invariant.
       const int k = grid.stores(ijk) ? slot_of_node[static_cast<std::size_t>(grid.node_index(ijk))] : -1;
       if (k < 0) throw std::logic_error("seen particles: a shared node that is no contact node here");
-      for (std::size_t q = 0; q < count; ++q) {
-        SeenParticle<D> p;
-        take(p);
-        seen[static_cast<std::size_t>(k)].push_back(p);
-      }
+      for (std::size_t q = 0; q < count; ++q)
+        seen[static_cast<std::size_t>(k)].push_back(bytes::take<SeenParticle<D>>(message, at, kWhat));
     }
   }
 }

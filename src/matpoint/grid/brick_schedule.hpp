@@ -157,13 +157,6 @@ class BrickSchedule {
     }
     return brick * local_stride + local;
   }
-  /// One more than the largest brick_major_cell of the grid.
-  [[nodiscard]] static Index brick_major_cell_count(const Grid<D>& grid) {
-    Index count = 1;
-    for (int a = 0; a < D; ++a) count *= static_cast<Index>(bricks_along(grid, a)) << brick_shift(a);
-    return count;
-  }
-
   [[nodiscard]] int colours() const { return static_cast<int>(colour_start_.size()) - 1; }
   [[nodiscard]] int colours_per_axis() const { return colours_per_axis_; }
 

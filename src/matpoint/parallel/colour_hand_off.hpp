@@ -128,7 +128,6 @@ class ColourHandOff final : public BrickBoundary {
     peers_.assign(static_cast<std::size_t>(colours), {});
     constexpr int kCut = SlabPartition<D>::kAxis;
     const int me = comm_.rank();
-    const auto mine = partition_.stored_nodes_of(me, below, above);
     for (int colour = 0; colour < colours; ++colour) {
       std::array<int, D> c{};
       for (int a = 0, rest = colour; a < D; ++a, rest /= m) c[a] = rest % m;
@@ -142,10 +141,9 @@ class ColourHandOff final : public BrickBoundary {
       }
       for (int r = 0; r < comm_.size(); ++r) {
         if (r == me) continue;
-        const auto theirs = partition_.stored_nodes_of(r, below, above);
+        const auto [shared_begin, shared_end] = partition_.shared_nodes_of(me, r, below, above);
         Peer peer{r, {}, {}};
-        for (int layer = std::max(mine.first, theirs.first); layer < std::min(mine.second, theirs.second);
-             ++layer) {
+        for (int layer = shared_begin; layer < shared_end; ++layer) {
           const int k = covering_brick(kCut, layer, c[kCut], m);
           if (k < 0) continue;
           const int owner = partition_.owner_of_layer(k);

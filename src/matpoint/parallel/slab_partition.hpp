@@ -108,6 +108,13 @@ class SlabPartition {
     if (begin == end) return {0, 0};
     return {std::max(0, begin - below), std::min(cells_ + 1, end + above)};
   }
+  /// The node layers [begin, end) that ranks r and s both store under the same reach (empty:
+  /// begin >= end): where the hand-off passes sums between them and where both fit contact normals.
+  [[nodiscard]] std::pair<int, int> shared_nodes_of(int r, int s, int below, int above) const {
+    const auto [r_begin, r_end] = stored_nodes_of(r, below, above);
+    const auto [s_begin, s_end] = stored_nodes_of(s, below, above);
+    return {std::max(r_begin, s_begin), std::min(r_end, s_end)};
+  }
 
  private:
   std::vector<int> first_;  // rank r: brick layers [first_[r], first_[r + 1]) along kAxis
