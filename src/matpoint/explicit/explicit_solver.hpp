@@ -75,18 +75,16 @@ class ExplicitSolver {
   explicit ExplicitSolver(const Spec& spec, const Communicator& comm = Communicator::world())
       : spec_(spec),
         sim_(simulation_on_ranks(spec, comm)),
-        capped_(spec, sim_.particles.size()),  // by id, before the ranks keep their own particles
+        capped_(spec, static_cast<std::size_t>(sim_.particles.next_id)),  // by id: every generated particle
         stepper_(sim_) {}
   ExplicitSolver(const ExplicitSolver&) = delete;
   ExplicitSolver& operator=(const ExplicitSolver&) = delete;
 
-  /// The whole simulation on every rank (each rank generates every particle, so the ids are the
-  /// generation order on any rank count); the stepper then keeps this rank's particles.
+  /// The simulation of this rank: the particles of its slab (the ids are the generation order
+  /// on any rank count, build_simulation).
   static Simulation<D> simulation_on_ranks(const Spec& spec, const Communicator& comm) {
     check_decomposable(spec, comm.size());  // InputError: nothing run yet
-    Simulation<D> sim = build_simulation<D>(spec);
-    sim.comm = comm;
-    return sim;
+    return build_simulation<D>(spec, comm);
   }
 
   Simulation<D>& sim() { return sim_; }
@@ -184,7 +182,11 @@ class ExplicitSolver {
     const SolverSpec& s = spec_.solver;
     if (s.transfer == VelocityTransfer::FMPM || s.transfer == VelocityTransfer::XPIC)
       facts.fmpm = stepper_.fmpm_statistics();
-    if (s.mapping != Mapping::MPM) facts.mls = stepper_.mls_statistics();
+    if (s.mapping != Mapping::MPM) {  // every rank counts its owned nodes and cells
+      facts.mls = stepper_.mls_statistics();
+      facts.mls->evaluations = sim_.comm.sum(facts.mls->evaluations);
+      facts.mls->fallbacks = sim_.comm.sum(facts.mls->fallbacks);
+    }
     if (sim_.has_contact && spec_.contact.normals == ContactNormals::Logistic)
       facts.logistic_fallbacks =  // every rank counts its owned nodes'
           static_cast<std::size_t>(sim_.comm.sum(static_cast<long>(sim_.contact.logistic_fallbacks())));

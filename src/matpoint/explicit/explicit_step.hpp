@@ -19,6 +19,7 @@
 #include "matpoint/explicit/grid_update.hpp"
 #include "matpoint/explicit/heat_transport.hpp"
 #include "matpoint/explicit/mls_mapping.hpp"
+#include "matpoint/explicit/mls_neighbourhood.hpp"
 #include "matpoint/explicit/scatter.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/parallel/colour_hand_off.hpp"
@@ -212,29 +213,49 @@ class ExplicitStepper {
   void scatter_mls(const std::vector<Vec<D>>* body) {
     constexpr unsigned kMassForce = What & (kScatterMass | kScatterForce);
     if constexpr ((What & kScatterMass) != 0) step_start_x_ = s_.particles.x;  // for the re-extrapolation
-    mls_.bin(s_.grid, s_.particles);
+    const std::vector<Vec<D>>* near_body = body;
+    const ParticleSet<D>* near = nullptr;  // gathered once for both reconstructions
     if constexpr (kMassForce != 0) {
-      if (s_.solver.mapping == Mapping::IMPM)
+      if (s_.solver.mapping == Mapping::IMPM) {
+        near = &mls_particles(near_body);
         mls_.template cell_quadrature<(What & kScatterMass) != 0, (What & kScatterForce) != 0>(
-            s_.grid, s_.particles, s_.gravity, body, s_.fields);
-      else
+            s_.grid, *near, s_.gravity, near_body, s_.fields);
+      } else {
         scatter_to_grid<kMassForce>(s_.grid, stencils_, s_.particles, s_.gravity, s_.fields,
                                     static_cast<const std::vector<Vec<D>>*>(nullptr), body);
-    }
-    if constexpr ((What & kScatterMomentum) != 0) {
-      if constexpr (What == kScatterMomentum) {
-        // MUSL / USAVG+ re-extrapolation after the particles moved: standard MUSL maps the new
-        // particle velocities with the stencils and masses of the start of the step, so the MLS fit
-        // uses the start-of-step positions too (fitting them at the moved positions would shift the
-        // fitted field by dx and give L = A - A^2 dt for a linear field v = A x).
-        std::swap(s_.particles.x, step_start_x_);
-        mls_.bin(s_.grid, s_.particles);
-        mls_.node_momentum(s_.grid, s_.particles, s_.fields.mass, s_.mass_floor, s_.fields.momentum);
-        std::swap(s_.particles.x, step_start_x_);
-      } else {
-        mls_.node_momentum(s_.grid, s_.particles, s_.fields.mass, s_.mass_floor, s_.fields.momentum);
       }
     }
+    if constexpr ((What & kScatterMomentum) != 0) {
+      // MUSL / USAVG+ re-extrapolation after the particles moved (What == kScatterMomentum):
+      // standard MUSL maps the new particle velocities with the stencils and masses of the start
+      // of the step, so the MLS fit uses the start-of-step positions too (fitting them at the
+      // moved positions would shift the fitted field by dx and give L = A - A^2 dt for a linear
+      // field v = A x).
+      constexpr bool kAtStepStart = What == kScatterMomentum;
+      if constexpr (kAtStepStart) std::swap(s_.particles.x, step_start_x_);
+      if (near == nullptr) near = &mls_particles(near_body);
+      mls_.node_momentum(s_.grid, *near, s_.fields.mass, s_.mass_floor, s_.fields.momentum);
+      if constexpr (kAtStepStart) std::swap(s_.particles.x, step_start_x_);
+    }
+  }
+
+  /// The particles that the MLS reconstructions read, binned by cell at their present positions:
+  /// this rank's, and in a decomposed run also the other ranks' near its window, in the serial
+  /// storage order (explicit/mls_neighbourhood.hpp; a collective). `body`: the body forces of
+  /// this rank's particles (or null), replaced by those of the particles returned.
+  const ParticleSet<D>& mls_particles(const std::vector<Vec<D>>*& body) {
+    if (!ranks_) {
+      mls_.bin(s_.grid, s_.particles);
+      return s_.particles;
+    }
+    const auto band_of = [this](int r) {
+      const auto [first_node, end_node] = stored_node_layers_of(r);
+      return MlsNeighbourhood<D>::band_of_window(whole_grid_, first_node, end_node);
+    };
+    mls_neighbours_.gather(s_.comm, whole_grid_, s_.particles, ranks_->migration.keys(), body, band_of);
+    body = mls_neighbours_.body();
+    mls_.bin(s_.grid, mls_neighbours_.particles(), mls_neighbours_.band());
+    return mls_neighbours_.particles();
   }
 
   /// This rank's share (its owned nodes of every field, its particles): the ranks' shares add up
@@ -251,14 +272,15 @@ class ExplicitStepper {
     s_.grid_momentum_difference = grid - particles;
   }
 
-  /// A decomposed run (docs/scale-out.md): the slab partition by particle count, this rank's
-  /// particles and owned nodes, and the hand-off between the colours of every particle-to-grid sum.
+  /// A decomposed run (docs/scale-out.md): the slab partition by particle count that the set-up
+  /// generated this rank's particles for (Simulation::first_layers), their sort keys, the owned
+  /// nodes, and the hand-off between the colours of every particle-to-grid sum.
   void decompose() {
-    const auto& ps = s_.particles;
-    std::vector<std::array<int, D>> cells(ps.size());
-    for (std::size_t p = 0; p < ps.size(); ++p) cells[p] = s_.grid.cell_coords(ps.x[p]);
-    use_partition(SlabPartition<D>::balanced(s_.grid, cells, s_.comm.size()));
-    ranks_->migration.keep_own(s_.particles, cells);
+    if (s_.first_layers.empty())
+      throw std::logic_error(
+          "a decomposed run needs the set-up's partition (build_simulation with the ranks)");
+    use_partition(SlabPartition<D>::from_first_layers(s_.grid, s_.first_layers));
+    ranks_->migration.start(s_.particles);
   }
 
   /// The partition's hand-off, migration and owned nodes (the particles are left as they are).
@@ -281,8 +303,7 @@ class ExplicitStepper {
   void fit_window() {
     constexpr int kCut = SlabPartition<D>::kAxis;
     const auto [below, above] = window_reach_;
-    auto [begin, end] = ranks_->partition.stored_nodes_of(s_.comm.rank(), below, above);
-    if (below < 0) begin = 0, end = whole_grid_.cells[kCut] + 1;
+    auto [begin, end] = stored_node_layers_of(s_.comm.rank());
     if (begin == end) end = begin + 1;  // a rank without cells: one node layer, never reached
     const Grid<D> old = s_.grid;
     s_.grid = whole_grid_.window(kCut, begin, end);
@@ -302,20 +323,25 @@ class ExplicitStepper {
     if constexpr (kFields) share_contact_nodes(below, above);
   }
 
+  /// The node layers [begin, end) along the cut axis that rank r's window holds: those its
+  /// particles' stencils reach under the agreed reach, the whole grid before the first agreement
+  /// (none for a rank without cells).
+  [[nodiscard]] std::pair<int, int> stored_node_layers_of(int r) const {
+    const auto [below, above] = window_reach_;
+    if (below < 0) return {0, whole_grid_.cells[SlabPartition<D>::kAxis] + 1};
+    return ranks_->partition.stored_nodes_of(r, below, above);
+  }
+
   /// The node layers this rank stores together with each other rank (for the logistic contact
   /// normals of the nodes near the rank boundaries: explicit/seen_particles.hpp).
   void share_contact_nodes(int below, int above) {
     std::vector<SharedNodeLayers> shared;
     const int me = s_.comm.rank();
-    if (below >= 0) {
-      const auto mine = ranks_->partition.stored_nodes_of(me, below, above);
+    if (below >= 0)
       for (int r = 0; r < s_.comm.size(); ++r) {
-        if (r == me) continue;
-        const auto theirs = ranks_->partition.stored_nodes_of(r, below, above);
-        const int begin = std::max(mine.first, theirs.first), end = std::min(mine.second, theirs.second);
-        if (begin < end) shared.push_back({r, begin, end});
+        const auto [begin, end] = ranks_->partition.shared_nodes_of(me, r, below, above);
+        if (r != me && begin < end) shared.push_back({r, begin, end});
       }
-    }
     s_.contact.share_nodes(std::move(shared), SlabPartition<D>::kAxis, &ranks_->migration.keys());
   }
 
@@ -336,6 +362,7 @@ class ExplicitStepper {
   /// conditions: the dynamic FMPM measure, the contact's friction work, the heat conditions.
   void count_owned_nodes_only() {
     fmpm_.decompose(s_.comm, s_.owned_nodes_begin, s_.owned_nodes_end, s_.grid.node_count);
+    mls_.count_only(s_.owned_nodes_begin, s_.owned_nodes_end, ranks_->partition.cells_of(s_.comm.rank()));
     if constexpr (kFields) s_.contact.decompose(s_.comm, s_.owned_nodes_begin, s_.owned_nodes_end);
     if (heat_.active()) heat_.count_only(s_);
   }
@@ -623,9 +650,10 @@ class ExplicitStepper {
   std::vector<Vec<D>> step_start_x_;  // MLS mapping: positions of the start of the step
   FmpmLoop<D> fmpm_;
   MlsMapping<D> mls_;
-  HeatTransport<D> heat_;     // inactive unless the input has a "heat" section
-  bool fmpm_now_ = false;     // this step runs the FMPM loop
-  double fmpm_period_ = 0.0;  // periodic FMPM by time or Courant units
+  MlsNeighbourhood<D> mls_neighbours_;  // a decomposed run: the particles the MLS mappings read
+  HeatTransport<D> heat_;               // inactive unless the input has a "heat" section
+  bool fmpm_now_ = false;               // this step runs the FMPM loop
+  double fmpm_period_ = 0.0;            // periodic FMPM by time or Courant units
   double next_fmpm_time_ = 0.0;
   double total_mass_ = 0.0;
   double step_dt_ = 0.0;

@@ -10,7 +10,10 @@
 // the centre, and Omega_c = sum of the volumes of the cell's particles instead of the cell volume.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "matpoint/grid/grid.hpp"
@@ -35,8 +38,19 @@ class MlsMapping {
 
   explicit MlsMapping(const MlsSpec& spec = {}) : spec_(spec) {}
 
-  /// Bins the particles by cell at their current positions (before each set of transfers).
-  void bin(const Grid<D>& grid, const ParticleSet<D>& particles) { bins_.build(grid, particles.x); }
+  /// Bins the particles by cell at their current positions (before each set of transfers);
+  /// `layers`: the cell layers along the last axis where they lie (ParticleBins::build).
+  void bin(const Grid<D>& grid, const ParticleSet<D>& particles, std::pair<int, int> layers = {0, -1}) {
+    bins_.build(grid, particles.x, layers);
+  }
+
+  /// A rank of a decomposed run counts the reconstructions at its owned nodes [begin, end) and in
+  /// its owned cell layers [first, end) along the last axis only, so that the ranks' counts add up
+  /// to the serial run's (it evaluates every node and cell of its window).
+  void count_only(Index node_begin, Index node_end, std::pair<int, int> cell_layers) {
+    counted_nodes_ = {node_begin, node_end};
+    counted_cell_layers_ = cell_layers;
+  }
 
   /// p_i = m_i v_i with v_i from (5.15) on the nodes heavier than mass_floor; zero elsewhere.
   void node_momentum(const Grid<D>& grid, const ParticleSet<D>& particles, const std::vector<double>& mass,
@@ -60,8 +74,10 @@ class MlsMapping {
       });
       Vec<D> v;
       const MlsStatus status = sums.solve(spec_.degree, v);
-      ++evaluations;
-      if (status == MlsStatus::Shepard) ++fallbacks;
+      if (i >= counted_nodes_.first && i < counted_nodes_.second) {
+        ++evaluations;
+        if (status == MlsStatus::Shepard) ++fallbacks;
+      }
       momentum[i] = mass[i] * v;
     }
     stats_.evaluations += evaluations;
@@ -76,6 +92,8 @@ class MlsMapping {
     reconstruct_at_cell_points(grid, particles, gravity, body);
     const auto n = static_cast<std::ptrdiff_t>(grid.node_count);
     const int q_count = points_per_cell();
+    const std::pair<int, int> layers = window_cells(grid);
+    const int first_layer = layers.first, end_layer = layers.second;
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
     for (std::ptrdiff_t i = 0; i < n; ++i) {
       const auto ijk = grid.node_coords(i);
@@ -86,13 +104,14 @@ class MlsMapping {
         bool inside = true;
         for (int a = 0; a < D; ++a) {
           const int ca = ijk[a] - ((e >> a) & 1);
-          inside = inside && ca >= 0 && ca < grid.cells[a];
+          inside =
+              inside && ca >= (a == D - 1 ? first_layer : 0) && ca < (a == D - 1 ? end_layer : grid.cells[a]);
           c += ca * stride;
           stride *= grid.cells[a];
         }
         if (!inside) continue;
         for (int q = 0; q < q_count; ++q) {
-          const Index k = c * q_count + q;
+          const Index k = (c - first_cell_) * q_count + q;
           double N = 1.0;
           Vec<D> dN = Vec<D>::Ones();
           for (int a = 0; a < D; ++a) {  // bilinear N_i at the point's local coordinate xi
@@ -114,6 +133,13 @@ class MlsMapping {
   [[nodiscard]] const MlsStatistics& statistics() const { return stats_; }
 
  private:
+  /// The cell layers along the last axis that the grid's stored nodes touch: every cell of a
+  /// serial run's grid, the window's cells on a rank of a decomposed run.
+  static std::pair<int, int> window_cells(const Grid<D>& grid) {
+    constexpr int a = D - 1;
+    return {std::max(0, grid.first[a] - 1), std::min(grid.cells[a], grid.first[a] + grid.nodes[a])};
+  }
+
   [[nodiscard]] int points_per_cell() const {
     return spec_.quadrature == CellQuadrature::Centre ? 1 : 1 << D;
   }
@@ -128,8 +154,11 @@ class MlsMapping {
   /// rho_c Omega, sigma_c Omega and rho_c (g + b_c) Omega at every cell point (Omega = Omega_c / points).
   void reconstruct_at_cell_points(const Grid<D>& grid, const ParticleSet<D>& particles, const Vec<D>& gravity,
                                   const std::vector<Vec<D>>* body) {
-    Index cells = 1;
-    for (int a = 0; a < D; ++a) cells *= grid.cells[a];
+    Index per_layer = 1;  // cells of one layer along the last axis
+    for (int a = 0; a + 1 < D; ++a) per_layer *= grid.cells[a];
+    const std::pair<int, int> layers = window_cells(grid);
+    first_cell_ = layers.first * per_layer;
+    const Index cells = (layers.second - layers.first) * per_layer;
     const int q_count = points_per_cell();
     point_mass_.resize(cells * q_count);
     point_stress_.resize(cells * q_count);
@@ -137,16 +166,20 @@ class MlsMapping {
     const Vec<D> inv_h = grid.h.cwiseInverse();
     long evaluations = 0, fallbacks = 0;
     const auto n = static_cast<std::ptrdiff_t>(cells);
+    const int counted_first = counted_cell_layers_.first, counted_end = counted_cell_layers_.second;
 #pragma omp parallel for schedule(static) if (n > 256) reduction(+ : evaluations, fallbacks)
-    for (std::ptrdiff_t c = 0; c < n; ++c) {
+    for (std::ptrdiff_t local = 0; local < n; ++local) {
+      const Index c = first_cell_ + local;  // flat index of the whole grid's cell
       const double omega = cell_volume(grid, particles, c) / q_count;
+      const int layer = static_cast<int>(c / per_layer);
+      const bool counted = layer >= counted_first && (counted_end < 0 || layer < counted_end);
       Vec<D> corner = grid.origin;  // lowest corner of cell c
       for (Index rest = c, a = 0; a < D; ++a) {
         corner[a] += static_cast<double>(rest % grid.cells[a]) * grid.h[a];
         rest /= grid.cells[a];
       }
       for (int q = 0; q < q_count; ++q) {
-        const Index k = c * q_count + q;
+        const Index k = local * q_count + q;
         point_mass_[k] = 0.0;
         point_stress_[k].setZero();
         point_body_[k].setZero();
@@ -162,8 +195,10 @@ class MlsMapping {
         });
         typename MlsSums<D, kFields>::Values u;
         const MlsStatus status = sums.solve(spec_.degree, u);
-        ++evaluations;
-        if (status == MlsStatus::Shepard) ++fallbacks;
+        if (counted) {
+          ++evaluations;
+          if (status == MlsStatus::Shepard) ++fallbacks;
+        }
         if (status == MlsStatus::Empty) continue;
         const double rho = u[0];
         point_mass_[k] = rho * omega;
@@ -201,6 +236,9 @@ class MlsMapping {
   MlsSpec spec_;
   ParticleBins<D> bins_;
   MlsStatistics stats_;
+  std::pair<Index, Index> counted_nodes_{0, std::numeric_limits<Index>::max()};
+  std::pair<int, int> counted_cell_layers_{0, -1};  // end < 0: to the last layer
+  Index first_cell_ = 0;              // the flat index of the first cell whose points the arrays below hold
   std::vector<double> point_mass_;    // rho_c Omega at each cell point
   std::vector<Mat<D>> point_stress_;  // sigma_c Omega
   std::vector<Vec<D>> point_body_;    // rho_c (g + b_c) Omega

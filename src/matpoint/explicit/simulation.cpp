@@ -6,7 +6,9 @@
 #include <string>
 
 #include "matpoint/core/errors.hpp"
+#include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/material/wave_speed.hpp"
+#include "matpoint/parallel/slab_partition.hpp"
 #include "matpoint/particles/generators.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 
@@ -16,35 +18,85 @@ namespace {
 
 /// Bodies must not share material: a particle centre of body b inside the shape of an earlier body a
 /// would put the overlap's mass in the grid twice. One issue per overlapping pair (path of body b).
+/// A collective in a decomposed run: the bodies' boxes and the counts are over every rank's
+/// particles, so every rank finds the same issues.
 template <int D>
 std::vector<InputIssue> overlapping_bodies(const Spec& spec, const ParticleSet<D>& particles,
-                                           const Vec<D>& cell) {
+                                           const Vec<D>& cell, const Communicator& comm) {
   const std::size_t n = spec.bodies.size();
-  std::vector<Vec<D>> lo(n, Vec<D>::Constant(std::numeric_limits<double>::infinity()));
-  std::vector<Vec<D>> hi(n, Vec<D>::Constant(-std::numeric_limits<double>::infinity()));
+  // box[(b * 2 + 0) * D + a] = -lo_b[a], box[(b * 2 + 1) * D + a] = hi_b[a]: one max over the ranks
+  std::vector<double> box(2 * n * D, -std::numeric_limits<double>::infinity());
   for (std::size_t p = 0; p < particles.size(); ++p) {  // particle boxes grown by a cell bound the shapes
     const auto b = static_cast<std::size_t>(particles.body[p]);
-    lo[b] = lo[b].cwiseMin(particles.x[p] - cell);
-    hi[b] = hi[b].cwiseMax(particles.x[p] + cell);
+    for (int a = 0; a < D; ++a) {
+      box[2 * b * D + a] = std::max(box[2 * b * D + a], cell[a] - particles.x[p][a]);
+      box[(2 * b + 1) * D + a] = std::max(box[(2 * b + 1) * D + a], particles.x[p][a] + cell[a]);
+    }
   }
-  std::vector<std::size_t> count(n * n, 0);  // count[b * n + a]: centres of b inside a, a < b
+  comm.max(box);
+  const auto inside_box = [&](std::size_t b, const Vec<D>& x) {
+    for (int a = 0; a < D; ++a)
+      if (x[a] < -box[2 * b * D + a] || x[a] > box[(2 * b + 1) * D + a]) return false;
+    return true;
+  };
+  std::vector<double> count(n * n, 0.0);  // count[b * n + a]: centres of b inside a, a < b
   for (std::size_t p = 0; p < particles.size(); ++p) {
     const auto b = static_cast<std::size_t>(particles.body[p]);
     const Vec<D>& x = particles.x[p];
     for (std::size_t a = 0; a < b; ++a)
-      if ((x.array() >= lo[a].array()).all() && (x.array() <= hi[a].array()).all() &&
-          shape_contains<D>(spec.bodies[a], x))
-        ++count[b * n + a];
+      if (inside_box(a, x) && shape_contains<D>(spec.bodies[a], x)) count[b * n + a] += 1.0;
   }
+  comm.sum(count);  // exact: integers in doubles
   std::vector<InputIssue> issues;
   for (std::size_t b = 0; b < n; ++b)
     for (std::size_t a = 0; a < b; ++a)
       if (count[b * n + a] > 0)
         issues.push_back({"bodies[" + std::to_string(b) + "].shape",
-                          std::to_string(count[b * n + a]) + " particle centre(s) inside bodies[" +
-                              std::to_string(a) + "] (\"" + spec.bodies[a].name + "\")",
+                          std::to_string(static_cast<long>(count[b * n + a])) +
+                              " particle centre(s) inside bodies[" + std::to_string(a) + "] (\"" +
+                              spec.bodies[a].name + "\")",
                           "bodies that do not overlap (the overlap's mass would count twice)"});
   return issues;
+}
+
+/// Generates every body's particles: all of them in a serial run. A rank of a decomposed run
+/// (docs/scale-out.md §5) stores only the particles of its slab, so that no rank ever holds the
+/// whole set: the bodies are generated twice, once to count the particles per brick layer, from
+/// which every rank computes the same balanced cut (sim.first_layers, where the stepper starts),
+/// and once to keep its own; the ids are the generation order on any rank count. Returns the
+/// bodies that generated no particle at all.
+template <int D>
+std::vector<InputIssue> generate_particles(const Spec& spec, Simulation<D>& sim) {
+  KeepParticle<D> keep;
+  if (sim.comm.distributed()) {
+    constexpr int kCut = SlabPartition<D>::kAxis;
+    std::vector<std::size_t> count(static_cast<std::size_t>(BrickSchedule<D>::bricks_along(sim.grid, kCut)),
+                                   0);
+    const KeepParticle<D> count_only = [&](const Vec<D>& x) {
+      ++count[static_cast<std::size_t>(SlabPartition<D>::layer_of(sim.grid.cell_coords(x)[kCut]))];
+      return false;
+    };
+    ParticleSet<D> none;
+    for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+      const auto& body = spec.bodies[b];
+      generate_body<D>(body, static_cast<int>(b), spec.materials[body.material], sim.grid, none, count_only);
+    }
+    const auto partition = SlabPartition<D>::balanced(sim.grid, count, sim.comm.size());
+    sim.first_layers = partition.first_layers();
+    keep = [partition, grid = sim.grid, rank = sim.comm.rank()](const Vec<D>& x) {
+      return partition.owner_of_cell(grid.cell_coords(x)) == rank;
+    };
+  }
+  std::vector<InputIssue> empty_bodies;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    const auto& body = spec.bodies[b];
+    if (generate_body<D>(body, static_cast<int>(b), spec.materials[body.material], sim.grid, sim.particles,
+                         keep) == 0)
+      empty_bodies.push_back(
+          {"bodies[" + std::to_string(b) + "].shape", "a shape that holds no particle centre",
+           "a shape that contains at least one sub-cell centre (enlarge it or refine the grid)"});
+  }
+  return empty_bodies;
 }
 
 }  // namespace
@@ -116,8 +168,9 @@ void set_up_heat(const Spec& spec, Simulation<D>& sim) {
 }  // namespace
 
 template <int D>
-Simulation<D> build_simulation(const Spec& spec) {
+Simulation<D> build_simulation(const Spec& spec, const Communicator& comm) {
   Simulation<D> sim;
+  sim.comm = comm;
   Vec<D> origin, h;
   std::array<int, D> cells{};
   for (int a = 0; a < D; ++a) {
@@ -132,18 +185,9 @@ Simulation<D> build_simulation(const Spec& spec) {
 
   for (const auto& m : spec.materials) sim.materials.push_back(make_material(m));
   set_state_layout<D>(sim.materials, sim.particles);
-  std::vector<InputIssue> empty_bodies;
-  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
-    const auto& body = spec.bodies[b];
-    const auto added =
-        generate_body<D>(body, static_cast<int>(b), spec.materials[body.material], sim.grid, sim.particles);
-    if (added == 0)
-      empty_bodies.push_back(
-          {"bodies[" + std::to_string(b) + "].shape", "a shape that holds no particle centre",
-           "a shape that contains at least one sub-cell centre (enlarge it or refine the grid)"});
-  }
-  if (!empty_bodies.empty()) throw InputError(std::move(empty_bodies));
-  if (auto overlaps = overlapping_bodies<D>(spec, sim.particles, h); !overlaps.empty())
+  if (auto empty_bodies = generate_particles(spec, sim); !empty_bodies.empty())
+    throw InputError(std::move(empty_bodies));
+  if (auto overlaps = overlapping_bodies<D>(spec, sim.particles, h, sim.comm); !overlaps.empty())
     throw InputError(std::move(overlaps));
   set_geostatic_stress<D>(sim.materials, spec.bodies, spec.loads.gravity, sim.particles);
   sim.particles.x0 = sim.particles.x;  // X_p and V_p(0): as generated, velocity noise included
@@ -154,8 +198,10 @@ Simulation<D> build_simulation(const Spec& spec) {
   sim.conditions = VelocityConditions<D>(spec.conditions, sim.grid);
   for (int a = 0; a < D; ++a) sim.gravity[a] = spec.loads.gravity[a];
   sim.solver = spec.solver;
-  const double heaviest =  // an implicit run of FE bodies alone has no particles
-      sim.particles.size() == 0 ? 0.0 : *std::max_element(sim.particles.mass.begin(), sim.particles.mass.end());
+  // the heaviest particle of every rank (an implicit run of FE bodies alone has no particles)
+  const double heaviest = sim.comm.max(
+      sim.particles.size() == 0 ? 0.0
+                                : *std::max_element(sim.particles.mass.begin(), sim.particles.mass.end()));
   sim.mass_floor = spec.solver.mass_tolerance * heaviest;
   sim.significant_mass = std::max(sim.mass_floor, 1e-12 * heaviest);
   sim.rigid_material.assign(spec.materials.size(), 0);
@@ -213,9 +259,9 @@ void check_setup(const Spec& input) {
   }
 }
 
-template Simulation<1> build_simulation<1>(const Spec&);
-template Simulation<2> build_simulation<2>(const Spec&);
-template Simulation<3> build_simulation<3>(const Spec&);
+template Simulation<1> build_simulation<1>(const Spec&, const Communicator&);
+template Simulation<2> build_simulation<2>(const Spec&, const Communicator&);
+template Simulation<3> build_simulation<3>(const Spec&, const Communicator&);
 template double max_wave_speed<1>(const Simulation<1>&);
 template double max_wave_speed<2>(const Simulation<2>&);
 template double max_wave_speed<3>(const Simulation<3>&);

@@ -71,16 +71,22 @@ struct Simulation {
   // stores and owns every node.
   Communicator comm;
   Index owned_nodes_begin = 0, owned_nodes_end = std::numeric_limits<Index>::max();
-  [[nodiscard]] bool owns_node(Index node) const { return node >= owned_nodes_begin && node < owned_nodes_end; }
+  // The slab cut the set-up generated this rank's particles for (SlabPartition::first_layers:
+  // rank r's first brick layer, then the layer count); the stepper starts from it. Empty: serial.
+  std::vector<int> first_layers;
+  [[nodiscard]] bool owns_node(Index node) const {
+    return node >= owned_nodes_begin && node < owned_nodes_end;
+  }
 };
 
 /// Grid ghost layers needed by a basis.
 int ghost_layers(ShapeKind shape);
 
 /// Builds grid, particles (cell-sorted, initial stress from F = I), materials and conditions.
-/// Throws InputError for bodies that produce no particle.
+/// Throws InputError for bodies that produce no particle. `comm` with several ranks: a decomposed
+/// explicit run, where each rank generates only its slab's particles (a collective).
 template <int D>
-Simulation<D> build_simulation(const Spec& spec);
+Simulation<D> build_simulation(const Spec& spec, const Communicator& comm = {});
 
 /// The largest material wave speed (the speed of the Courant number).
 /// Sets up the simulation of a validated spec (grid, particles, materials) and discards it: throws

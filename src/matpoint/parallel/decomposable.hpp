@@ -13,9 +13,9 @@ namespace matpoint {
 
 /// Throws InputError (exit 2, before anything runs) for every part of `spec` that a run on
 /// `ranks` > 1 ranks cannot do yet: the contact conductance of coupled heat (it reads the particles
-/// of other ranks) and the MLS mappings (since session 27 the logistic-regression contact normals
-/// run on ranks: explicit/seen_particles.hpp). One
-/// rank: nothing is refused. (Checkpoints and restarts work on any rank count: one piece per rank
+/// of other ranks). Since session 27 the logistic-regression contact normals run on ranks
+/// (explicit/seen_particles.hpp), since session 28 the MLS mappings (explicit/mls_neighbourhood.hpp).
+/// One rank: nothing is refused. (Checkpoints and restarts work on any rank count: one piece per rank
 /// and a manifest, io/checkpoint.hpp.)
 inline void check_decomposable(const Spec& spec, int ranks) {
   if (ranks <= 1) return;
@@ -27,8 +27,6 @@ inline void check_decomposable(const Spec& spec, int ranks) {
   };
   if (spec.heat.enabled && spec.contact.enabled && spec.heat.contact == ThermalContact::Conductance)
     refuse("heat.contact", "\"conductance\" (its contact areas sum the particles' domains in storage order)");
-  if (spec.solver.mapping != Mapping::MPM)
-    refuse("solver.mapping", "an MLS mapping (it gathers neighbour particles)");
   if (!issues.empty()) throw InputError(std::move(issues));
 }
 

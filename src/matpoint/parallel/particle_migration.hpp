@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
-#include <cstring>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -22,6 +21,7 @@
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/parallel/bytes.hpp"
 #include "matpoint/parallel/communicator.hpp"
 #include "matpoint/parallel/slab_partition.hpp"
 #include "matpoint/parallel/traffic.hpp"
@@ -35,16 +35,16 @@ class ParticleMigration {
   ParticleMigration(const Grid<D>& grid, const SlabPartition<D>& partition, const Communicator& comm)
       : grid_(grid), partition_(partition), comm_(comm) {}
 
-  /// Keeps this rank's particles of a set that every rank generated whole (storage order kept);
-  /// `cells[p]` is particle p's cell.
-  void keep_own(ParticleSet<D>& ps, const std::vector<std::array<int, D>>& cells) {
-    std::vector<char> keep(ps.size());
-    std::vector<Index> key;
+  /// The set-up's particles of this rank (build_simulation generated only those, sorted by cell):
+  /// their sort keys. A particle in another rank's cells would be a broken invariant.
+  void start(const ParticleSet<D>& ps) {
+    std::vector<Index> key(ps.size());
     for (std::size_t p = 0; p < ps.size(); ++p) {
-      keep[p] = static_cast<char>(partition_.owner_of_cell(cells[p]) == comm_.rank());
-      if (keep[p] != 0) key.push_back(BrickSchedule<D>::brick_major_cell(grid_, cells[p]));
+      const auto cell = grid_.cell_coords(ps.x[p]);
+      if (partition_.owner_of_cell(cell) != comm_.rank())
+        throw std::logic_error("particle migration: the set-up left a particle of another rank here");
+      key[p] = BrickSchedule<D>::brick_major_cell(grid_, cell);
     }
-    compact(ps, keep);
     key_ = std::move(key);
     sorted_prefix_ = ps.size();
   }
@@ -131,44 +131,27 @@ class ParticleMigration {
 
   /// The particles `which`: their count, then each array of for_each_array in its order, then the keys.
   std::vector<char> pack(const ParticleSet<D>& ps, const std::vector<std::size_t>& which) const {
-    std::vector<char> bytes;
-    append(bytes, static_cast<std::size_t>(which.size()));
+    std::vector<char> message;
+    bytes::append(message, static_cast<std::size_t>(which.size()));
     for_each_array(ps, [&](const char*, const auto& array, std::size_t count) {
       for (const std::size_t p : which)
-        for (std::size_t k = 0; k < count; ++k) append(bytes, array[p * count + k]);
+        for (std::size_t k = 0; k < count; ++k) bytes::append(message, array[p * count + k]);
     });
-    for (const std::size_t p : which) append(bytes, key_[p]);
-    return bytes;
+    for (const std::size_t p : which) bytes::append(message, key_[p]);
+    return message;
   }
 
-  void unpack(ParticleSet<D>& ps, const std::vector<char>& bytes) {
+  static constexpr const char* kWhat = "particle migration";
+
+  void unpack(ParticleSet<D>& ps, const std::vector<char>& message) {
     std::size_t at = 0;
-    const auto n = take<std::size_t>(bytes, at);
+    const auto n = bytes::take<std::size_t>(message, at, kWhat);
     for_each_array(ps, [&](const char*, auto& array, std::size_t count) {
       using T = typename std::remove_reference_t<decltype(array)>::value_type;
-      for (std::size_t q = 0; q < n * count; ++q) array.push_back(take<T>(bytes, at));
+      for (std::size_t q = 0; q < n * count; ++q) array.push_back(bytes::take<T>(message, at, kWhat));
     });
-    for (std::size_t q = 0; q < n; ++q) key_.push_back(take<Index>(bytes, at));
-    if (at != bytes.size()) throw std::logic_error("particle migration: a message of unexpected length");
-  }
-
-  template <class T>
-  static void append(std::vector<char>& bytes, const T& value) {
-    // Eigen's fixed-size vectors and matrices are plain arrays of doubles, though not formally
-    // trivially copyable (they declare copy constructors); every particle array is one of those,
-    // an array of them, or a number.
-    static_assert(std::is_standard_layout_v<T>);
-    const std::size_t at = bytes.size();
-    bytes.resize(at + sizeof(T));
-    std::memcpy(bytes.data() + at, &value, sizeof(T));
-  }
-  template <class T>
-  static T take(const std::vector<char>& bytes, std::size_t& at) {
-    if (at + sizeof(T) > bytes.size()) throw std::logic_error("particle migration: a message too short");
-    T value;
-    std::memcpy(static_cast<void*>(&value), bytes.data() + at, sizeof(T));
-    at += sizeof(T);
-    return value;
+    for (std::size_t q = 0; q < n; ++q) key_.push_back(bytes::take<Index>(message, at, kWhat));
+    if (at != message.size()) throw std::logic_error("particle migration: a message of unexpected length");
   }
 
   const Grid<D>& grid_;

@@ -37,6 +37,52 @@ Vec<D> initial_velocity(const BodySpec& body, const Vec<D>& x) {
   return v;
 }
 
+/// Where a generator puts each particle it generates, in generation order: the body's initial
+/// velocity and velocity noise (drawn for every generated particle, so the same seed gives every
+/// particle the same noise on any rank count), then the set stores it or, when `keep` refuses it,
+/// only counts its id.
+template <int D>
+class ParticleEmitter {
+ public:
+  ParticleEmitter(const BodySpec& body, int body_index, const MaterialSpec& material,
+                  ParticleSet<D>& particles, const KeepParticle<D>& keep)
+      : body_(body),
+        body_index_(body_index),
+        material_(material),
+        particles_(particles),
+        keep_(keep),
+        rng_(body.noise_seed) {}
+
+  /// A particle at x of initial volume `volume` (mass = density x volume) and domain edges `size`.
+  void operator()(const Vec<D>& x, double volume, const Vec<D>& size) {
+    emit(x, material_.density * volume, volume, size);
+  }
+  /// The same with its mass given (the graded generators integrate it).
+  void emit(const Vec<D>& x, double mass, double volume, const Vec<D>& size) {
+    Vec<D> v = initial_velocity<D>(body_, x);
+    if (body_.noise_amplitude > 0.0)
+      for (int a = 0; a < D; ++a) v[a] += body_.noise_amplitude * normal_(rng_);
+    ++generated_;
+    if (keep_ && !keep_(x)) {
+      particles_.skip();
+      return;
+    }
+    particles_.add(x, v, mass, volume, size, body_.material, body_index_);
+  }
+
+  [[nodiscard]] std::size_t generated() const { return generated_; }
+
+ private:
+  const BodySpec& body_;
+  int body_index_;
+  const MaterialSpec& material_;
+  ParticleSet<D>& particles_;
+  const KeepParticle<D>& keep_;
+  std::mt19937 rng_;
+  std::normal_distribution<double> normal_{0.0, 1.0};
+  std::size_t generated_ = 0;
+};
+
 template <int D>
 void bounding_box(const BodySpec& body, Vec<D>& lo, Vec<D>& hi) {
   for (int a = 0; a < D; ++a) {
@@ -84,8 +130,7 @@ void permute(const std::vector<Index>& order, std::vector<T>& array, std::size_t
 /// Aulisa & Capodaglio's graded disk or beam (particles/graded_generators.hpp; the beam's left end
 /// at box min x, its mid-height the box's); each particle's domain is the square of its volume
 /// (only the domain-based bases of explicit runs use it).
-std::size_t add_graded(const BodySpec& body, int body_index, const MaterialSpec& material,
-                       ParticleSet<2>& particles) {
+void add_graded(const BodySpec& body, const MaterialSpec& material, ParticleEmitter<2>& emit) {
   const GradedParticles g =
       body.shape == BodyShape::GradedDisk
           ? graded_disk(Vec<2>(body.center[0], body.center[1]), body.radius, body.core_radius,
@@ -95,10 +140,8 @@ std::size_t add_graded(const BodySpec& body, int body_index, const MaterialSpec&
                         material.density);
   for (std::size_t k = 0; k < g.position.size(); ++k) {
     const double side = std::sqrt(g.volume[k]);
-    particles.add(g.position[k], initial_velocity<2>(body, g.position[k]), g.mass[k], g.volume[k],
-                  Vec<2>(side, side), body.material, body_index);
+    emit.emit(g.position[k], g.mass[k], g.volume[k], Vec<2>(side, side));
   }
-  return g.position.size();
 }
 
 /// bodies[].placement "gauss" on a structured T3 mesh (Iaconeta 2017 §5.2: three material points
@@ -106,9 +149,8 @@ std::size_t add_graded(const BodySpec& body, int body_index, const MaterialSpec&
 /// gets the points of the symmetric 3-point rule, barycentric (2/3, 1/6, 1/6) and its permutations
 /// (exact for quadratics; Zienkiewicz & Taylor vol. 1, Table 9.3), each with a third of the
 /// triangle's area; the points outside the body's shape are left out.
-void add_triangle_points(const BodySpec& body, int body_index, const MaterialSpec& material,
-                         const Grid<2>& grid, const std::array<int, 2>& first, const std::array<int, 2>& last,
-                         ParticleSet<2>& particles) {
+void add_triangle_points(const BodySpec& body, const Grid<2>& grid, const std::array<int, 2>& first,
+                         const std::array<int, 2>& last, ParticleEmitter<2>& emit) {
   const mesh::TrianglePattern pattern = *body.triangle_points;
   // a third of a triangle's area: half a cell (rising, falling, alternating) or a quarter (crossed)
   const double volume = grid.h[0] * grid.h[1] / (pattern == mesh::TrianglePattern::Crossed ? 12.0 : 6.0);
@@ -124,9 +166,7 @@ void add_triangle_points(const BodySpec& body, int body_index, const MaterialSpe
             x[0] += weight * (i + corner[0]) * grid.h[0];
             x[1] += weight * (j + corner[1]) * grid.h[1];
           }
-          if (shape_contains<2>(body, x))
-            particles.add(x, initial_velocity<2>(body, x), material.density * volume, volume,
-                          Vec<2>(side, side), body.material, body_index);
+          if (shape_contains<2>(body, x)) emit(x, volume, Vec<2>(side, side));
         }
 }
 
@@ -161,9 +201,8 @@ namespace {
 /// cell's ppc^D Gauss-Legendre points, ppc = 2 or 3, each with its weight's share of the cell's
 /// volume: bodies[].placement "gauss"), those inside the body's shape.
 template <int D>
-void add_lattice_points(const BodySpec& body, int body_index, const MaterialSpec& material,
-                        const Grid<D>& grid, const std::array<int, D>& first, const std::array<int, D>& last,
-                        ParticleSet<D>& particles) {
+void add_lattice_points(const BodySpec& body, const Grid<D>& grid, const std::array<int, D>& first,
+                        const std::array<int, D>& last, ParticleEmitter<D>& emit) {
   const int ppc = body.particles_per_cell;
   const Vec<D> sub = grid.h / ppc;
   // Gauss-Legendre on [0, 1]: 2 points (1 -+ 1/sqrt(3)) / 2 with weights 1/2; 3 points
@@ -192,11 +231,7 @@ void add_lattice_points(const BodySpec& body, int body_index, const MaterialSpec
     while (true) {
       Vec<D> x;
       for (int a = 0; a < D; ++a) x[a] = grid.origin[a] + cell[a] * grid.h[a] + offset(s[a], a);
-      if (shape_contains<D>(body, x)) {
-        const double volume = particle_volume(s);
-        particles.add(x, initial_velocity<D>(body, x), material.density * volume, volume, sub, body.material,
-                      body_index);
-      }
+      if (shape_contains<D>(body, x)) emit(x, particle_volume(s), sub);
       int a = 0;
       while (a < D && ++s[a] == ppc) s[a++] = 0;
       if (a == D) break;
@@ -211,7 +246,7 @@ void add_lattice_points(const BodySpec& body, int body_index, const MaterialSpec
 
 template <int D>
 std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material,
-                          const Grid<D>& grid, ParticleSet<D>& particles) {
+                          const Grid<D>& grid, ParticleSet<D>& particles, const KeepParticle<D>& keep) {
   Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
   bounding_box<D>(body, lo, hi);
   std::array<int, D> first{}, last{};
@@ -219,24 +254,18 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
     first[a] = std::max(0, static_cast<int>(std::floor((lo[a] - grid.origin[a]) / grid.h[a])));
     last[a] = std::min(grid.cells[a] - 1, static_cast<int>(std::floor((hi[a] - grid.origin[a]) / grid.h[a])));
   }
-  const std::size_t before = particles.size();
+  ParticleEmitter<D> emit(body, body_index, material, particles, keep);
   if constexpr (D == 2) {
     if (body.shape == BodyShape::GradedDisk || body.shape == BodyShape::GradedBeam)
-      return add_graded(body, body_index, material, particles);
-    if (body.triangle_points)
-      add_triangle_points(body, body_index, material, grid, first, last, particles);
+      add_graded(body, material, emit);
+    else if (body.triangle_points)
+      add_triangle_points(body, grid, first, last, emit);
     else
-      add_lattice_points<D>(body, body_index, material, grid, first, last, particles);
+      add_lattice_points<D>(body, grid, first, last, emit);
   } else {
-    add_lattice_points<D>(body, body_index, material, grid, first, last, particles);
+    add_lattice_points<D>(body, grid, first, last, emit);
   }
-  if (body.noise_amplitude > 0.0) {  // in generation order: the same seed gives the same noise
-    std::mt19937 rng(body.noise_seed);
-    std::normal_distribution<double> normal(0.0, 1.0);
-    for (std::size_t p = before; p < particles.size(); ++p)
-      for (int a = 0; a < D; ++a) particles.v[p][a] += body.noise_amplitude * normal(rng);
-  }
-  return particles.size() - before;
+  return emit.generated();
 }
 
 template <int D>
@@ -281,7 +310,7 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles, std::vector<In
 
 #define MATPOINT_INSTANTIATE(D)                                                                    \
   template std::size_t generate_body<D>(const BodySpec&, int, const MaterialSpec&, const Grid<D>&, \
-                                        ParticleSet<D>&);                                          \
+                                        ParticleSet<D>&, const KeepParticle<D>&);                  \
   template bool shape_contains<D>(const BodySpec&, const Vec<D>&);                                 \
   template void sort_by_cell<D>(const Grid<D>&, ParticleSet<D>&, std::vector<Index>*);
 MATPOINT_INSTANTIATE(1)

@@ -2,6 +2,7 @@
 // grid cell (particles_per_cell per direction), and the cell sort that keeps transfers local.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "matpoint/grid/grid.hpp"
@@ -10,10 +11,16 @@
 
 namespace matpoint {
 
-/// Adds the particles of one body; returns how many were added.
+/// Which generated particles a set stores, by position (a rank of a decomposed run: those in its
+/// slab); empty: every one.
+template <int D>
+using KeepParticle = std::function<bool(const Vec<D>&)>;
+
+/// Generates the particles of one body in their generation order (the ids), stores those that
+/// `keep` accepts (all when it is empty) and skips the others' ids; returns how many it generated.
 template <int D>
 std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSpec& material,
-                          const Grid<D>& grid, ParticleSet<D>& particles);
+                          const Grid<D>& grid, ParticleSet<D>& particles, const KeepParticle<D>& keep = {});
 
 /// True when x lies inside the body's shape (boundary included).
 template <int D>

@@ -56,6 +56,9 @@ struct ParticleSet {
   // must any other code that writes F or state or adds or removes particles (a checkpoint read,
   // ExplicitSolver::restore; a migration between ranks).
   double recorded_wave_speed = -1.0;
+  // The id the next add() gives: the number of particles generated so far, including those a
+  // rank of a decomposed run generated and left to another rank (skip()).
+  long next_id = 0;
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
   [[nodiscard]] bool plastic(std::size_t p) const {
@@ -69,10 +72,13 @@ struct ParticleSet {
     return 0.5 * (F[p].transpose() * n).cwiseAbs().dot(size0[p]);
   }
 
+  /// A particle generated for another rank: it takes the next id, and this set does not store it.
+  void skip() { ++next_id; }
+
   void add(const Vec<D>& position, const Vec<D>& velocity, double m, double vol, const Vec<D>& size,
            int material_id, int body_id) {
     recorded_wave_speed = -1.0;
-    id.push_back(static_cast<long>(x.size()));
+    id.push_back(next_id++);
     x.push_back(position);
     v.push_back(velocity);
     x0.push_back(position);

@@ -1,0 +1,129 @@
+// The particles that the MLS reconstructions of a decomposed run read (Gong 2015 §5.4 and §6.6,
+// explicit/mls_mapping.hpp; issue 23, docs/scale-out.md §16): a node or cell point near a rank
+// boundary gathers the particles within two cells of it, some of them another rank's.
+//
+// Before each set of reconstructions every rank sends to each neighbour the particles of its
+// cells that lie in the band of cell layers that the neighbour's reconstructions read (its grid
+// window and three cell layers below, two above: the cubic weight's support at the nodes, the
+// quadratic weight's at the cell points), with what the reconstructions read of a particle (x, v,
+// mass, V0, F, stress, body force) and its place in the serial storage order (key, id). The
+// reconstructions then read this rank's particles and those, merged in (key, id) order: the serial
+// run's storage order (the serial run stores its particles in (brick-major cell at the last sort,
+// id) order, and a decomposed run carries each particle's key with it), so that the bins visit
+// the particles of a cell in the serial order and every reconstruction is the serial one to the bit.
+#pragma once
+
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "matpoint/core/types.hpp"
+#include "matpoint/grid/grid.hpp"
+#include "matpoint/parallel/bytes.hpp"
+#include "matpoint/parallel/communicator.hpp"
+#include "matpoint/particles/particle_set.hpp"
+
+namespace matpoint {
+
+/// What an MLS reconstruction reads of a particle of another rank, and its serial order.
+template <int D>
+struct GhostParticle {
+  Vec<D> x, v, body;
+  Mat<D> F, stress;
+  double mass = 0.0, volume0 = 0.0;
+  Index key = 0;
+  long id = 0;
+};
+
+template <int D>
+class MlsNeighbourhood {
+ public:
+  /// Cell layers [begin, end) along the last axis whose particles the reconstructions of a rank
+  /// storing the node layers [first_node, end_node) read: a node sees the cells within two of it
+  /// (cubic weight), a cell point in the cells next to a stored node the cells within 1.5 cells.
+  static std::pair<int, int> band_of_window(const Grid<D>& grid, int first_node, int end_node) {
+    if (first_node >= end_node) return {0, 0};
+    return {std::max(0, first_node - 3), std::min(grid.cells[D - 1], end_node + 2)};
+  }
+
+  /// Gathers this rank's particles (`own`, with their sort keys `keys` and body forces `body`, or
+  /// none) and the other ranks' in this rank's band; `band_of(r)`: rank r's band (every rank
+  /// computes the same bands). A collective. Then particles() and body() hold them in serial order.
+  template <class BandOf>
+  void gather(const Communicator& comm, const Grid<D>& grid, const ParticleSet<D>& own,
+              const std::vector<Index>& keys, const std::vector<Vec<D>>* body, BandOf&& band_of) {
+    constexpr int kCut = D - 1;
+    const int me = comm.rank();
+    const std::pair<int, int> mine = band_of(me);
+    std::vector<std::pair<int, std::pair<int, int>>> neighbours;  // rank, band: those that read my particles
+    for (int r = 0; r < comm.size(); ++r) {
+      const auto theirs = band_of(r);
+      if (r != me && theirs.first < theirs.second) neighbours.push_back({r, theirs});
+    }
+    std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
+    for (std::size_t p = 0; p < own.size(); ++p) {
+      const int layer = grid.cell_coordinate(own.x[p][kCut], kCut);
+      for (const auto& [r, theirs] : neighbours)
+        if (layer >= theirs.first && layer < theirs.second)
+          bytes::append(out[static_cast<std::size_t>(r)], ghost_of(own, keys, body, p));
+    }
+    std::vector<GhostParticle<D>> ghosts;
+    for (const std::vector<char>& message : comm.exchange(out))
+      for (std::size_t at = 0; at < message.size();)
+        ghosts.push_back(bytes::take<GhostParticle<D>>(message, at, "MLS ghost particles"));
+    merge(own, keys, body, ghosts);
+    band_ = mine;
+  }
+
+  /// The particles the reconstructions read (x, v, mass, volume0, F, stress, id), in serial order.
+  [[nodiscard]] const ParticleSet<D>& particles() const { return near_; }
+  /// Their body forces (null when gather had none).
+  [[nodiscard]] const std::vector<Vec<D>>* body() const { return has_body_ ? &near_body_ : nullptr; }
+  /// The cell layers where they lie (for the bins).
+  [[nodiscard]] std::pair<int, int> band() const { return band_; }
+
+ private:
+  static GhostParticle<D> ghost_of(const ParticleSet<D>& own, const std::vector<Index>& keys,
+                                   const std::vector<Vec<D>>* body, std::size_t p) {
+    GhostParticle<D> g;
+    g.x = own.x[p], g.v = own.v[p], g.body = body != nullptr ? (*body)[p] : Vec<D>::Zero();
+    g.F = own.F[p], g.stress = own.stress[p];
+    g.mass = own.mass[p], g.volume0 = own.volume0[p];
+    g.key = keys[p], g.id = own.id[p];
+    return g;
+  }
+
+  /// near_ = own particles and ghosts, sorted by (key, id).
+  void merge(const ParticleSet<D>& own, const std::vector<Index>& keys, const std::vector<Vec<D>>* body,
+             const std::vector<GhostParticle<D>>& ghosts) {
+    const std::size_t n_own = own.size(), n = n_own + ghosts.size();
+    const auto key_of = [&](std::size_t k) {
+      return k < n_own ? std::make_tuple(keys[k], own.id[k])
+                       : std::make_tuple(ghosts[k - n_own].key, ghosts[k - n_own].id);
+    };
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return key_of(a) < key_of(b); });
+    has_body_ = body != nullptr;
+    for (auto* array : {&near_.x, &near_.v, &near_body_}) array->resize(n);
+    for (auto* array : {&near_.F, &near_.stress}) array->resize(n);
+    near_.mass.resize(n), near_.volume0.resize(n), near_.id.resize(n);
+    for (std::size_t q = 0; q < n; ++q) {
+      const std::size_t k = order[q];
+      const GhostParticle<D> g = k < n_own ? ghost_of(own, keys, body, k) : ghosts[k - n_own];
+      near_.x[q] = g.x, near_.v[q] = g.v, near_body_[q] = g.body;
+      near_.F[q] = g.F, near_.stress[q] = g.stress;
+      near_.mass[q] = g.mass, near_.volume0[q] = g.volume0, near_.id[q] = g.id;
+    }
+  }
+
+  ParticleSet<D> near_;
+  std::vector<Vec<D>> near_body_;
+  bool has_body_ = false;
+  std::pair<int, int> band_{0, 0};
+};
+
+}  // namespace matpoint
