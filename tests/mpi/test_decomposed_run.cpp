@@ -251,7 +251,7 @@ TEST(DecomposedRun, ContactDisksWithLogisticNormalsEqualSerialRunBitwise) {
 }
 
 // The MLS mappings (Gong 2015 §5.4 improved MPM, §6.6 improved CPDI): every node and cell point
-// near a rank boundary gathers particles of both ranks (explicit/mls_neighbourhood.hpp), in the
+// near a rank boundary gathers particles of both ranks (explicit/near_particles.hpp), in the
 // serial order. IMPM with 2 x 2 Gauss points per cell and the cell volumes of the particles in the
 // cell (the ghosts' volumes count), MUSL (the re-extrapolation fits the step-start positions).
 TEST(DecomposedRun, TwoDisksWithImpmEqualSerialRunBitwise) {
@@ -283,6 +283,22 @@ TEST(DecomposedRun, ContactDisksWithHeatEqualSerialRunBitwise) {
                          "end_time": 1.6e-4 })",
                     true),
       600);
+}
+
+// The heat contact conductance (an interface conductance h_c through the nodal contact areas,
+// explicit/thermal_contact.hpp): the areas come from sums over the GIMP domains of the particles
+// of both ranks in the serial order (explicit/near_particles.hpp). The left disk starts 100 K
+// warmer than the right one, so heat crosses the contact at the rank boundary.
+TEST(DecomposedRun, ContactDisksWithHeatConductanceEqualSerialRunBitwise) {
+  std::string json =
+      contact_disks(R"({ "law": "coulomb", "friction": 0.6, "normals": "mass_gradient", "separation": 0.5 })",
+                    R"({ "scheme": "musl", "transfer": "flip", "basis": "bspline2", "courant": 0.2,
+                         "end_time": 1.6e-4 })",
+                    true);
+  const std::string heat = R"("initial_temperature": 300, "transfer": "flip")";
+  json.replace(json.find(heat), heat.size(), heat + R"(, "contact": "conductance", "contact_conductance": 1e7,
+                          "body_temperatures": [ { "body": "left", "temperature": 400 } ])");
+  expect_equal_to_serial<FieldStencils<2, TensorStencils<2, QuadraticBSplineBasis>>>(json, 600);
 }
 
 // examples/incline-friction (a block sliding down a rigid incline, Coulomb mu = 0.3) raised so that

@@ -13,7 +13,6 @@
 #include "matpoint/explicit/explicit_step.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/io/checkpoint.hpp"
-#include "matpoint/parallel/decomposable.hpp"
 #include "matpoint/parallel/parallel_summary.hpp"
 #include "matpoint/run/energy_guard.hpp"
 #include "matpoint/run/run_summary.hpp"
@@ -74,18 +73,11 @@ class ExplicitSolver {
   /// `comm`: the ranks that share the run (a decomposed run when there are several).
   explicit ExplicitSolver(const Spec& spec, const Communicator& comm = Communicator::world())
       : spec_(spec),
-        sim_(simulation_on_ranks(spec, comm)),
+        sim_(build_simulation<D>(spec, comm)),  // this rank's particles; ids in generation order
         capped_(spec, static_cast<std::size_t>(sim_.particles.next_id)),  // by id: every generated particle
         stepper_(sim_) {}
   ExplicitSolver(const ExplicitSolver&) = delete;
   ExplicitSolver& operator=(const ExplicitSolver&) = delete;
-
-  /// The simulation of this rank: the particles of its slab (the ids are the generation order
-  /// on any rank count, build_simulation).
-  static Simulation<D> simulation_on_ranks(const Spec& spec, const Communicator& comm) {
-    check_decomposable(spec, comm.size());  // InputError: nothing run yet
-    return build_simulation<D>(spec, comm);
-  }
 
   Simulation<D>& sim() { return sim_; }
   [[nodiscard]] const Simulation<D>& sim() const { return sim_; }

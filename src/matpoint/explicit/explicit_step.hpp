@@ -19,7 +19,7 @@
 #include "matpoint/explicit/grid_update.hpp"
 #include "matpoint/explicit/heat_transport.hpp"
 #include "matpoint/explicit/mls_mapping.hpp"
-#include "matpoint/explicit/mls_neighbourhood.hpp"
+#include "matpoint/explicit/near_particles.hpp"
 #include "matpoint/explicit/scatter.hpp"
 #include "matpoint/explicit/simulation.hpp"
 #include "matpoint/parallel/colour_hand_off.hpp"
@@ -129,7 +129,10 @@ class ExplicitStepper {
         strain_from_momentum(0.5 * dt, t_new);
         break;
     }
-    if (heat_.active()) heat_.step(s_, grid_, stencils_, s_.particles, dt, t_new, s_.boundary_heat);
+    if (heat_.active()) {
+      if (ranks_ && heat_.contact().conducts()) gather_near_domains();
+      heat_.step(s_, grid_, stencils_, s_.particles, dt, t_new, s_.boundary_heat);
+    }
     if (ranks_) {
       settle_failures();  // every rank stops together, with the first failing rank's message
       ranks_->migration.migrate(s_.particles);
@@ -241,7 +244,7 @@ class ExplicitStepper {
 
   /// The particles that the MLS reconstructions read, binned by cell at their present positions:
   /// this rank's, and in a decomposed run also the other ranks' near its window, in the serial
-  /// storage order (explicit/mls_neighbourhood.hpp; a collective). `body`: the body forces of
+  /// storage order (explicit/near_particles.hpp; a collective). `body`: the body forces of
   /// this rank's particles (or null), replaced by those of the particles returned.
   const ParticleSet<D>& mls_particles(const std::vector<Vec<D>>*& body) {
     if (!ranks_) {
@@ -250,12 +253,36 @@ class ExplicitStepper {
     }
     const auto band_of = [this](int r) {
       const auto [first_node, end_node] = stored_node_layers_of(r);
-      return MlsNeighbourhood<D>::band_of_window(whole_grid_, first_node, end_node);
+      return NearParticles<D>::mls_band(whole_grid_, first_node, end_node);
     };
     mls_neighbours_.gather(s_.comm, whole_grid_, s_.particles, ranks_->migration.keys(), body, band_of);
     body = mls_neighbours_.body();
     mls_.bin(s_.grid, mls_neighbours_.particles(), mls_neighbours_.band());
     return mls_neighbours_.particles();
+  }
+
+  /// A decomposed run with a heat contact conductance: the particles whose GIMP domains reach this
+  /// rank's window, in the serial order (explicit/near_particles.hpp; a collective), for the
+  /// contact's nodal volumes (ThermalContactCoupling::near_volumes), with their field offsets and
+  /// the band grid that holds their domain stencils.
+  void gather_near_domains() {
+    constexpr int kCut = SlabPartition<D>::kAxis, kWidth = ThermalContactCoupling<D>::kWidestDomain;
+    const auto band_of = [this](int r) {
+      const auto [first_node, end_node] = stored_node_layers_of(r);
+      return NearParticles<D>::domain_band(whole_grid_, first_node, end_node, kWidth);
+    };
+    heat_neighbours_.gather(s_.comm, whole_grid_, s_.particles, ranks_->migration.keys(), nullptr, band_of);
+    const ParticleSet<D>& near = heat_neighbours_.particles();
+    const auto [first_cell, end_cell] = heat_neighbours_.band();
+    near_domains_.particles = &near;
+    near_domains_.band = whole_grid_.window(kCut, first_cell - kWidth, end_cell + kWidth);
+    near_domains_.offset.resize(near.size());
+    const Index field_nodes = s_.grid.node_count;
+    for (std::size_t p = 0; p < near.size(); ++p)
+      near_domains_.offset[p] =
+          s_.field_of[static_cast<std::size_t>(s_.fields_by_material ? near.material[p] : near.body[p])] *
+          field_nodes;
+    heat_.use_near_domains(&near_domains_);
   }
 
   /// This rank's share (its owned nodes of every field, its particles): the ranks' shares add up
@@ -650,10 +677,12 @@ class ExplicitStepper {
   std::vector<Vec<D>> step_start_x_;  // MLS mapping: positions of the start of the step
   FmpmLoop<D> fmpm_;
   MlsMapping<D> mls_;
-  MlsNeighbourhood<D> mls_neighbours_;  // a decomposed run: the particles the MLS mappings read
-  HeatTransport<D> heat_;               // inactive unless the input has a "heat" section
-  bool fmpm_now_ = false;               // this step runs the FMPM loop
-  double fmpm_period_ = 0.0;            // periodic FMPM by time or Courant units
+  NearParticles<D> mls_neighbours_;   // a decomposed run: the particles the MLS mappings read
+  NearParticles<D> heat_neighbours_;  // and those whose domains the heat contact conductance reads
+  typename ThermalContactCoupling<D>::NearDomains near_domains_;
+  HeatTransport<D> heat_;     // inactive unless the input has a "heat" section
+  bool fmpm_now_ = false;     // this step runs the FMPM loop
+  double fmpm_period_ = 0.0;  // periodic FMPM by time or Courant units
   double next_fmpm_time_ = 0.0;
   double total_mass_ = 0.0;
   double step_dt_ = 0.0;

@@ -138,6 +138,10 @@ class HeatTransport {
 
   [[nodiscard]] const FmpmStatistics& fmpm_statistics() const { return fmpm_.statistics(); }
   [[nodiscard]] const ThermalContactCoupling<D>& contact() const { return contact_; }
+  /// A decomposed run's particles near the window, for the contact conductance's volumes.
+  void use_near_domains(const typename ThermalContactCoupling<D>::NearDomains* near) {
+    contact_.use_near(near);
+  }
 
  private:
   static FmpmSpec transport_fmpm(const HeatSpec& h) {

@@ -137,6 +137,21 @@ class ThermalContactCoupling {
   ThermalContactCoupling(ThermalContact mode, double conductance) : mode_(mode), conductance_(conductance) {}
 
   [[nodiscard]] bool perfect() const { return mode_ == ThermalContact::Perfect && !members_.empty(); }
+  [[nodiscard]] bool conducts() const { return mode_ == ThermalContact::Conductance; }
+
+  /// The widest domain stencil (cubic GIMP): how far a particle's domain reaches, in nodes.
+  static constexpr int kWidestDomain = GimpBasis<CubicKernel, DomainWidth::Stretched>::width;
+
+  /// A decomposed run (docs/scale-out.md §16): the particles whose domains reach this rank's
+  /// window, its own and its neighbours' in the serial order (explicit/near_particles.hpp), with
+  /// each one's field offset (field x nodes per field of the window), and the band grid (a window
+  /// of the whole grid along the last axis) where all their domain stencils lie. Null: serial.
+  struct NearDomains {
+    const ParticleSet<D>* particles = nullptr;
+    std::vector<Index> offset;
+    Grid<D> band;
+  };
+  void use_near(const NearDomains* near) { near_ = near; }
 
   /// Conductance: the sum of the nodal contact areas of the last exchange (m^2; m per unit
   /// thickness in 2-D), a pooled node's half areas included (diagnostics and tests).
@@ -270,6 +285,10 @@ class ThermalContactCoupling {
   /// along the interface's normal (for h_n).
   template <class Kernel, class Stencils>
   void volumes(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& ps) {
+    if (near_ != nullptr) {
+      near_volumes<Kernel>(grid);
+      return;
+    }
     auto& domains = domain_stencils<Kernel>();
     domains.evaluate(grid, ps);
     volume_.assign(static_cast<std::size_t>(grid.node_count), 0.0);
@@ -283,6 +302,33 @@ class ThermalContactCoupling {
       });
     }
   }
+  /// volumes() of a decomposed run: the same sums in the same (serial) order over the near
+  /// particles, whose stencils are evaluated on the band grid; the band's nodes outside this
+  /// rank's window (`grid`, node_count over every field) are left out. Windows differ only along
+  /// the last axis, the slowest, so a band node's index less the layers between the two windows'
+  /// first nodes is its window index.
+  template <class Kernel>
+  void near_volumes(const Grid<D>& grid) {
+    const ParticleSet<D>& ps = *near_->particles;
+    const Grid<D>& band = near_->band;
+    auto& domains = domain_stencils<Kernel>();
+    domains.evaluate(band, ps);
+    volume_.assign(static_cast<std::size_t>(grid.node_count), 0.0);
+    gradient_.assign(static_cast<std::size_t>(grid.node_count), Vec<D>::Zero());
+    constexpr int kCut = D - 1;
+    const Index shift = static_cast<Index>(grid.first[kCut] - band.first[kCut]) * grid.stride[kCut];
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      const double V = ps.volume(p);
+      domains.for_each_node(band, p, [&](Index node, double N, const Vec<D>& dN) {
+        node -= shift;
+        if (node < 0 || node >= field_nodes_) return;  // not in this rank's window
+        node += near_->offset[p];
+        volume_[node] += V * N;
+        gradient_[node] += V * dN;
+      });
+    }
+  }
+
   /// The stretched-GIMP stencils of Kernel over the particles' domains (kept: evaluated each step).
   template <class Kernel>
   TensorStencils<D, GimpBasis<Kernel, DomainWidth::Stretched>>& domain_stencils() {
@@ -293,8 +339,9 @@ class ThermalContactCoupling {
 
   ThermalContact mode_ = ThermalContact::Insulated;
   double conductance_ = 0.0;
-  double area_ = 0.0;      // the last exchange's summed contact area
-  Index field_nodes_ = 0;  // the contact's nodes per field
+  const NearDomains* near_ = nullptr;  // a decomposed run's near particles (use_near)
+  double area_ = 0.0;                  // the last exchange's summed contact area
+  Index field_nodes_ = 0;              // the contact's nodes per field
   int fields_ = 0;
   std::vector<std::pair<Index, int>> scratch_;  // (grid node, field) in perfect contact
   std::vector<Index> members_;                  // multi-field nodes of each group, by group

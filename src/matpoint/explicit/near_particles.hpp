@@ -1,16 +1,19 @@
-// The particles that the MLS reconstructions of a decomposed run read (Gong 2015 §5.4 and §6.6,
-// explicit/mls_mapping.hpp; issue 23, docs/scale-out.md §16): a node or cell point near a rank
-// boundary gathers the particles within two cells of it, some of them another rank's.
-//
-// Before each set of reconstructions every rank sends to each neighbour the particles of its
-// cells that lie in the band of cell layers that the neighbour's reconstructions read (its grid
-// window and three cell layers below, two above: the cubic weight's support at the nodes, the
-// quadratic weight's at the cell points), with what the reconstructions read of a particle (x, v,
-// mass, V0, F, stress, body force) and its place in the serial storage order (key, id). The
-// reconstructions then read this rank's particles and those, merged in (key, id) order: the serial
-// run's storage order (the serial run stores its particles in (brick-major cell at the last sort,
-// id) order, and a decomposed run carries each particle's key with it), so that the bins visit
-// the particles of a cell in the serial order and every reconstruction is the serial one to the bit.
+// Ghost particles: the particles near a rank's grid window, its own and its neighbours', in the
+// serial storage order (issue 23, docs/scale-out.md §16). Two computations of a decomposed run
+// read particles of other ranks at the nodes they evaluate, and are not particle-to-grid sums in
+// the brick order that the colour hand-off carries:
+// - the MLS reconstructions (Gong 2015 §5.4 and §6.6, explicit/mls_mapping.hpp): a node or cell
+//   point gathers the particles within two cells of it (mls_band: the window and three cell layers
+//   below, two above: the cubic weight's support at the nodes, the quadratic weight's at the cell
+//   points);
+// - the nodal volumes of the heat contact conductance (explicit/thermal_contact.hpp): sums over
+//   the particles' GIMP domains in storage order (domain_band: the domain stencils' width).
+// Every rank sends each neighbour the particles of its cells in the neighbour's band, with what
+// those computations read of a particle (GhostParticle) and its place in the serial storage order
+// (key, id), and merges what arrives with its own particles in (key, id) order: the serial run's
+// storage order (the serial run stores its particles in (brick-major cell at the last sort, id)
+// order, and a decomposed run carries each particle's key with it), so that every gather and every
+// sum visits the particles in the serial order and gives the serial result to the bit.
 #pragma once
 
 #include <algorithm>
@@ -27,25 +30,34 @@
 
 namespace matpoint {
 
-/// What an MLS reconstruction reads of a particle of another rank, and its serial order.
+/// What the MLS reconstructions and the contact volumes read of a particle of another rank (the
+/// body force: the MLS mappings' b_p, or zero), and its serial order.
 template <int D>
 struct GhostParticle {
-  Vec<D> x, v, body;
+  Vec<D> x, v, body_force, size0;
   Mat<D> F, stress;
   double mass = 0.0, volume0 = 0.0;
   Index key = 0;
   long id = 0;
+  int material = 0, body = 0;
 };
 
 template <int D>
-class MlsNeighbourhood {
+class NearParticles {
  public:
-  /// Cell layers [begin, end) along the last axis whose particles the reconstructions of a rank
-  /// storing the node layers [first_node, end_node) read: a node sees the cells within two of it
-  /// (cubic weight), a cell point in the cells next to a stored node the cells within 1.5 cells.
-  static std::pair<int, int> band_of_window(const Grid<D>& grid, int first_node, int end_node) {
+  /// Cell layers [begin, end) along the last axis whose particles the MLS reconstructions of a
+  /// rank storing the node layers [first_node, end_node) read: a node sees the cells within two of
+  /// it (cubic weight), a cell point in the cells next to a stored node the cells within 1.5 cells.
+  static std::pair<int, int> mls_band(const Grid<D>& grid, int first_node, int end_node) {
     if (first_node >= end_node) return {0, 0};
     return {std::max(0, first_node - 3), std::min(grid.cells[D - 1], end_node + 2)};
+  }
+  /// The cell layers whose particles' stencils of `width` nodes per axis (the lowest at most
+  /// width - 1 nodes below the particle's cell, the highest at most width - 1 above its lowest
+  /// node) reach the node layers [first_node, end_node).
+  static std::pair<int, int> domain_band(const Grid<D>& grid, int first_node, int end_node, int width) {
+    if (first_node >= end_node) return {0, 0};
+    return {std::max(0, first_node - width + 1), std::min(grid.cells[D - 1], end_node + width - 1)};
   }
 
   /// Gathers this rank's particles (`own`, with their sort keys `keys` and body forces `body`, or
@@ -72,26 +84,28 @@ class MlsNeighbourhood {
     std::vector<GhostParticle<D>> ghosts;
     for (const std::vector<char>& message : comm.exchange(out))
       for (std::size_t at = 0; at < message.size();)
-        ghosts.push_back(bytes::take<GhostParticle<D>>(message, at, "MLS ghost particles"));
+        ghosts.push_back(bytes::take<GhostParticle<D>>(message, at, "near particles"));
     merge(own, keys, body, ghosts);
     band_ = mine;
   }
 
-  /// The particles the reconstructions read (x, v, mass, volume0, F, stress, id), in serial order.
+  /// The particles near the window (x, v, mass, volume0, size0, F, stress, material, body, id), in
+  /// serial order.
   [[nodiscard]] const ParticleSet<D>& particles() const { return near_; }
   /// Their body forces (null when gather had none).
   [[nodiscard]] const std::vector<Vec<D>>* body() const { return has_body_ ? &near_body_ : nullptr; }
-  /// The cell layers where they lie (for the bins).
+  /// The cell layers where they lie.
   [[nodiscard]] std::pair<int, int> band() const { return band_; }
 
  private:
   static GhostParticle<D> ghost_of(const ParticleSet<D>& own, const std::vector<Index>& keys,
                                    const std::vector<Vec<D>>* body, std::size_t p) {
     GhostParticle<D> g;
-    g.x = own.x[p], g.v = own.v[p], g.body = body != nullptr ? (*body)[p] : Vec<D>::Zero();
-    g.F = own.F[p], g.stress = own.stress[p];
+    g.x = own.x[p], g.v = own.v[p], g.body_force = body != nullptr ? (*body)[p] : Vec<D>::Zero();
+    g.size0 = own.size0[p], g.F = own.F[p], g.stress = own.stress[p];
     g.mass = own.mass[p], g.volume0 = own.volume0[p];
     g.key = keys[p], g.id = own.id[p];
+    g.material = own.material[p], g.body = own.body[p];
     return g;
   }
 
@@ -108,15 +122,17 @@ class MlsNeighbourhood {
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return key_of(a) < key_of(b); });
     has_body_ = body != nullptr;
-    for (auto* array : {&near_.x, &near_.v, &near_body_}) array->resize(n);
+    for (auto* array : {&near_.x, &near_.v, &near_.size0, &near_body_}) array->resize(n);
     for (auto* array : {&near_.F, &near_.stress}) array->resize(n);
+    for (auto* array : {&near_.material, &near_.body}) array->resize(n);
     near_.mass.resize(n), near_.volume0.resize(n), near_.id.resize(n);
     for (std::size_t q = 0; q < n; ++q) {
       const std::size_t k = order[q];
       const GhostParticle<D> g = k < n_own ? ghost_of(own, keys, body, k) : ghosts[k - n_own];
-      near_.x[q] = g.x, near_.v[q] = g.v, near_body_[q] = g.body;
+      near_.x[q] = g.x, near_.v[q] = g.v, near_.size0[q] = g.size0, near_body_[q] = g.body_force;
       near_.F[q] = g.F, near_.stress[q] = g.stress;
       near_.mass[q] = g.mass, near_.volume0[q] = g.volume0, near_.id[q] = g.id;
+      near_.material[q] = g.material, near_.body[q] = g.body;
     }
   }
 
