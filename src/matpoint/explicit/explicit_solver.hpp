@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "matpoint/explicit/explicit_step.hpp"
@@ -23,10 +24,13 @@ namespace matpoint {
 /// cpGIMP's half-width |F_aa| l0 is capped at h/2 (shape/tensor_stencils.hpp, as Gong's formula
 /// assumes); past that the domain no longer has the volume V0 det F. Marks (by particle id) every
 /// particle stretched past the cap, checked every few steps; the run warns once with the count.
+/// Memory: the marked ids of this rank's particles only (a rank never holds one entry per
+/// particle of the whole run).
 class CappedDomains {
  public:
-  CappedDomains(const Spec& spec, std::size_t particles)
-      : active_(spec.solver.shape == ShapeKind::CpGIMP), capped_(active_ ? particles : 0, 0) {}
+  /// `generated`: the particles of the whole run (every rank's).
+  CappedDomains(const Spec& spec, long generated)
+      : active_(spec.solver.shape == ShapeKind::CpGIMP), generated_(generated) {}
 
   template <int D>
   void check(const Simulation<D>& sim) {
@@ -35,24 +39,24 @@ class CappedDomains {
     for (std::size_t p = 0; p < ps.size(); ++p)
       for (int a = 0; a < D; ++a)
         if (stretched_half_width(sim.grid, ps, p, a) > 0.5) {
-          if (capped_[ps.id[p]] == 0 && first_time_ < 0) first_time_ = sim.time;
-          capped_[ps.id[p]] = 1;
+          if (first_time_ < 0) first_time_ = sim.time;
+          capped_.insert(ps.id[p]);
         }
   }
 
   /// The warning, or an empty string when no particle reached the cap.
-  /// In a decomposed run each rank marks its own particles (by id); `comm` takes the largest mark
-  /// of each id, so that a particle marked on two ranks (it migrated) counts once.
+  /// In a decomposed run each rank marks its own particles (by id); the ranks' lists are gathered
+  /// and a particle marked on two ranks (it migrated) counts once.
   [[nodiscard]] std::string warning(const Communicator& comm) const {
-    std::vector<double> marks(capped_.begin(), capped_.end());
-    comm.max(marks);
-    const auto count = static_cast<long>(std::count(marks.begin(), marks.end(), 1.0));
+    std::vector<long> marked = comm.all_gather(std::vector<long>(capped_.begin(), capped_.end()));
+    std::sort(marked.begin(), marked.end());
+    const auto count = std::unique(marked.begin(), marked.end()) - marked.begin();
     // the earliest first time of any rank (-1: none on this rank)
     const double first_time =
         -comm.max(first_time_ < 0 ? -std::numeric_limits<double>::infinity() : -first_time_);
     if (count == 0) return {};
     std::ostringstream text;
-    text << "cpGIMP: " << count << " of " << capped_.size()
+    text << "cpGIMP: " << count << " of " << generated_
          << " particles were stretched past a domain half-width of h/2 (first at t = " << first_time
          << "); their domains were capped there and no longer have the volume V0 det F (Gong 2015 §6.3); "
             "uGIMP, CPDI or a finer grid avoid it";
@@ -61,7 +65,8 @@ class CappedDomains {
 
  private:
   bool active_;
-  std::vector<char> capped_;
+  long generated_;
+  std::unordered_set<long> capped_;  // ids of this rank's particles marked so far
   double first_time_ = -1.0;
 };
 
@@ -74,7 +79,7 @@ class ExplicitSolver {
   explicit ExplicitSolver(const Spec& spec, const Communicator& comm = Communicator::world())
       : spec_(spec),
         sim_(build_simulation<D>(spec, comm)),  // this rank's particles; ids in generation order
-        capped_(spec, static_cast<std::size_t>(sim_.particles.next_id)),  // by id: every generated particle
+        capped_(spec, sim_.particles.next_id),  // the count of every rank's generated particles
         stepper_(sim_) {}
   ExplicitSolver(const ExplicitSolver&) = delete;
   ExplicitSolver& operator=(const ExplicitSolver&) = delete;
