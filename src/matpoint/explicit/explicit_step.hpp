@@ -263,7 +263,7 @@ class ExplicitStepper {
 
   /// A decomposed run with a heat contact conductance: the particles whose GIMP domains reach this
   /// rank's window, in the serial order (explicit/near_particles.hpp; a collective), for the
-  /// contact's nodal volumes (ThermalContactCoupling::near_volumes), with their field offsets and
+  /// contact's nodal volumes (ThermalContactCoupling::add_domain_volumes), with their field offsets and
   /// the band grid that holds their domain stencils.
   void gather_near_domains() {
     constexpr int kCut = SlabPartition<D>::kAxis, kWidth = ThermalContactCoupling<D>::kWidestDomain;

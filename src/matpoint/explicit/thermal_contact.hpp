@@ -285,44 +285,33 @@ class ThermalContactCoupling {
   /// along the interface's normal (for h_n).
   template <class Kernel, class Stencils>
   void volumes(const Grid<D>& grid, const Stencils& stencils, const ParticleSet<D>& ps) {
-    if (near_ != nullptr) {
-      near_volumes<Kernel>(grid);
-      return;
-    }
-    auto& domains = domain_stencils<Kernel>();
-    domains.evaluate(grid, ps);
-    volume_.assign(static_cast<std::size_t>(grid.node_count), 0.0);
-    gradient_.assign(static_cast<std::size_t>(grid.node_count), Vec<D>::Zero());
-    for (std::size_t p = 0; p < ps.size(); ++p) {
-      const double V = ps.volume(p);
-      domains.for_each_node(grid, p, [&](Index node, double N, const Vec<D>& dN) {
-        node += stencils.offset[p];  // on the particle's field
-        volume_[node] += V * N;
-        gradient_[node] += V * dN;
-      });
-    }
+    if (near_ != nullptr)  // a decomposed run: its own and its neighbours' particles, serial order
+      add_domain_volumes<Kernel>(grid, near_->band, *near_->particles,
+                                 [&](std::size_t p) { return near_->offset[p]; });
+    else
+      add_domain_volumes<Kernel>(grid, grid, ps, [&](std::size_t p) { return stencils.offset[p]; });
   }
-  /// volumes() of a decomposed run: the same sums in the same (serial) order over the near
-  /// particles, whose stencils are evaluated on the band grid; the band's nodes outside this
-  /// rank's window (`grid`, node_count over every field) are left out. Windows differ only along
-  /// the last axis, the slowest, so a band node's index less the layers between the two windows'
-  /// first nodes is its window index.
-  template <class Kernel>
-  void near_volumes(const Grid<D>& grid) {
-    const ParticleSet<D>& ps = *near_->particles;
-    const Grid<D>& band = near_->band;
+  /// The sums of volumes() over the particles `ps` in their order, their domain stencils evaluated
+  /// on `domains_grid` (this rank's `grid` itself, or a decomposed run's band grid that holds the
+  /// near particles' stencils), into the nodes of `grid` (node_count over every field; `offset(p)`:
+  /// particle p's field offset). The nodes of the band outside this rank's window are left out.
+  /// Windows differ only along the last axis, the slowest, so a band node's index less the layers
+  /// between the two windows' first nodes is its window index.
+  template <class Kernel, class Offset>
+  void add_domain_volumes(const Grid<D>& grid, const Grid<D>& domains_grid, const ParticleSet<D>& ps,
+                          Offset&& offset) {
     auto& domains = domain_stencils<Kernel>();
-    domains.evaluate(band, ps);
+    domains.evaluate(domains_grid, ps);
     volume_.assign(static_cast<std::size_t>(grid.node_count), 0.0);
     gradient_.assign(static_cast<std::size_t>(grid.node_count), Vec<D>::Zero());
     constexpr int kCut = D - 1;
-    const Index shift = static_cast<Index>(grid.first[kCut] - band.first[kCut]) * grid.stride[kCut];
+    const Index shift = static_cast<Index>(grid.first[kCut] - domains_grid.first[kCut]) * grid.stride[kCut];
     for (std::size_t p = 0; p < ps.size(); ++p) {
       const double V = ps.volume(p);
-      domains.for_each_node(band, p, [&](Index node, double N, const Vec<D>& dN) {
+      domains.for_each_node(domains_grid, p, [&](Index node, double N, const Vec<D>& dN) {
         node -= shift;
         if (node < 0 || node >= field_nodes_) return;  // not in this rank's window
-        node += near_->offset[p];
+        node += offset(p);                             // on the particle's field
         volume_[node] += V * N;
         gradient_[node] += V * dN;
       });
