@@ -349,7 +349,7 @@ def report(args, pts, runs, elapsed, finished=None):
     w("## Weak scaling (twice the particles on twice the ranks)")
     w("")
     w("The 2-rank input is the bench example with the body and the grid twice as long along the cut "
-      "axis (y in 2-D, z in 3-D: the slab partition cuts along it), so each rank holds about the "
+      "axis (y in 2-D, z in 3-D: the axis with the most bricks, along which the partition cuts), so each rank holds about the "
       "1-rank run's particles. Weak efficiency = 1-rank step time / 2-rank step time (wall; and CPU).")
     w("")
     w("| case | ranks x threads | particles | per rank (min-max) | M particle-steps/s (median; all runs) | wall ms per step | CPU ms per step | weak efficiency, wall | weak efficiency, CPU | load before each run |")
@@ -518,8 +518,11 @@ def report(args, pts, runs, elapsed, finished=None):
     w("- **cube, RCB boxes**: a cube of 64 000 P cells (P x bench-3d's block). Slabs along one axis run "
       "out at cells_z / 8 ranks (one brick layer each): the cube is (64 000 P)^(1/3) cells a side, "
       "25 layers at P = 64 and 63 at P = 1024, fewer than the ranks. A cube on 64 or 1024 ranks "
-      "therefore needs the recursive bisection boxes of docs/scale-out.md §10 (not built yet): each "
-      "rank a box of 40^3 cells (50^3 at 10^6) with 6 face, 12 edge and 8 corner neighbours. (Slabs "
+      "therefore needs the recursive bisection boxes of docs/scale-out.md §10 (built in session 29; "
+      "tested bitwise on 4 ranks as 2 x 2 boxes): each rank a box of 40^3 cells (50^3 at 10^6) with 6 "
+      "face, 12 edge and 8 corner neighbours. (The boxes are whole bricks of 32 x 8 x 8 cells, so at "
+      "P = 1024 a rank's box is rather 64 x 32 x 32 cells, with 7 % more surface than 40^3; the model "
+      "keeps the cube. Slabs "
       "could serve a cube only with cells_z >= 8 P, i.e. >= 4096 P^2 particles per rank: 1.7 x 10^7 "
       "at P = 64, 4.3 x 10^9 at 1024.)")
     w("")

@@ -29,27 +29,28 @@ namespace {
 
 using namespace matpoint;
 
-/// Per particle, by id: x, v, F, stress (2-D), and the temperature with coupled heat.
+/// Per particle, by id: x, v, F, stress, and the temperature with coupled heat.
 struct Particles {
   std::vector<long> id;
   std::vector<double> values;
   // the accumulated totals, added over the ranks: friction work, heat in through the thermal
   // conditions, external work, external impulse (x, y)
   std::vector<double> totals;
-  int per_particle = 2 + 2 + 4 + 4;
+  int per_particle = 0;
 };
 
-Particles gather(const Simulation<2>& sim, const Communicator& comm) {
+template <int D>
+Particles gather(const Simulation<D>& sim, const Communicator& comm) {
   const auto& ps = sim.particles;
   std::vector<long> ids(ps.id.begin(), ps.id.end());
   std::vector<double> values;
   Particles out;
-  if (ps.has_temperature) ++out.per_particle;
+  out.per_particle = 2 * D + 2 * D * D + (ps.has_temperature ? 1 : 0);
   for (std::size_t p = 0; p < ps.size(); ++p) {
-    for (int a = 0; a < 2; ++a) values.push_back(ps.x[p][a]);
-    for (int a = 0; a < 2; ++a) values.push_back(ps.v[p][a]);
-    for (int k = 0; k < 4; ++k) values.push_back(ps.F[p].data()[k]);
-    for (int k = 0; k < 4; ++k) values.push_back(ps.stress[p].data()[k]);
+    for (int a = 0; a < D; ++a) values.push_back(ps.x[p][a]);
+    for (int a = 0; a < D; ++a) values.push_back(ps.v[p][a]);
+    for (int k = 0; k < D * D; ++k) values.push_back(ps.F[p].data()[k]);
+    for (int k = 0; k < D * D; ++k) values.push_back(ps.stress[p].data()[k]);
     if (ps.has_temperature) values.push_back(ps.temperature[p]);
   }
   const auto all_ids = comm.all_gather(ids);
@@ -71,10 +72,10 @@ Particles gather(const Simulation<2>& sim, const Communicator& comm) {
 
 /// Runs `steps` steps of `spec` on `comm`'s ranks; checks every step that the particle count and
 /// the total mass over the ranks stay those of the start, then returns the particles by id.
-template <class Stencils>
+template <class Stencils, int D = 2>
 Particles run(const Spec& spec, long steps, const Communicator& comm, long* most_moved = nullptr,
               long* repartitions = nullptr) {
-  ExplicitSolver<2, Stencils> solver(spec, comm);
+  ExplicitSolver<D, Stencils> solver(spec, comm);
   const auto& ps = solver.sim().particles;
   const long count = comm.sum(static_cast<long>(ps.size()));
   // The set-up generated this rank's particles only (docs/scale-out.md §5): on several ranks none
@@ -93,7 +94,7 @@ Particles run(const Spec& spec, long steps, const Communicator& comm, long* most
   }
   if (repartitions != nullptr) *repartitions = solver.repartitions();
   // The grid window (docs/scale-out.md §2): on several ranks none stores the whole grid.
-  const Grid<2>& grid = solver.sim().grid;
+  const Grid<D>& grid = solver.sim().grid;
   if (comm.size() > 1) {
     EXPECT_LT(comm.max(static_cast<long>(grid.node_count)), static_cast<long>(grid.total_node_count()))
         << "the largest window of any rank";
@@ -101,16 +102,15 @@ Particles run(const Spec& spec, long steps, const Communicator& comm, long* most
   return gather(solver.sim(), comm);
 }
 
-/// `migrating`: the bodies cross the rank boundaries (the slabs are along y), which the run must
-/// then show.
-template <class Stencils>
+/// `migrating`: the bodies cross the rank boundaries, which the run must then show.
+template <class Stencils, int D = 2>
 void expect_equal_to_serial(const std::string& json, long steps, bool migrating = true,
                             long* repartitions = nullptr) {
   const Spec spec = parse_spec(json);
   const Communicator world = Communicator::world();
-  const Particles serial = run<Stencils>(spec, steps, Communicator());
+  const Particles serial = run<Stencils, D>(spec, steps, Communicator());
   long moved = 0;
-  const Particles ranks = run<Stencils>(spec, steps, world, &moved, repartitions);
+  const Particles ranks = run<Stencils, D>(spec, steps, world, &moved, repartitions);
   ASSERT_EQ(ranks.id, serial.id) << "every id exactly once";
   std::size_t differing = 0;
   for (std::size_t k = 0; k < serial.values.size(); ++k)
@@ -404,6 +404,113 @@ TEST(DecomposedRun, DynamicFmpmMeansEqualsSerialRunBitwise) {
 TEST(DecomposedRun, DynamicFmpmChangesEqualsSerialRunBitwise) {
   expect_equal_to_serial<TensorStencils<2, QuadraticBSplineBasis>>(dynamic_fmpm_blocks("changes", "0.01"),
                                                                    200);
+}
+
+// Boxes (docs/scale-out.md §10): a domain several bricks long along x as well as y is cut into
+// boxes. The channel below is 6 x 4 bricks (384 x 32 cells of 1 cm; a brick 64 x 8 cells): two
+// ranks cut it along x (the axis with more bricks) at x = 1.92 m, where the particles split in
+// half, and four ranks cut each half again along y, each where its own particles split (recursive
+// bisection: the two y cuts need not be the same). Two disks meet off-centre (t = 0.2 s) just right
+// of the x cut, which runs through the left disk, near the corners of the four boxes; MUSL, FLIP,
+// quadratic B-splines.
+const char* const kChannelDisks = R"({
+  "grid": { "dim": 2, "min": [0, 0], "max": [3.84, 0.32], "cell_size": 0.01 },
+  "materials": [ { "name": "elastic", "model": "linear_elastic", "density": 1000, "E": 1000, "nu": 0.3 } ],
+  "bodies": [
+    { "name": "left", "material": "elastic", "shape": { "type": "disk", "center": [1.86, 0.13], "radius": 0.08 },
+      "particles_per_cell": 2, "velocity": [0.1, 0.02] },
+    { "name": "right", "material": "elastic", "shape": { "type": "disk", "center": [2.06, 0.19], "radius": 0.08 },
+      "particles_per_cell": 2, "velocity": [-0.1, -0.02] } ],
+  "solver": { "scheme": "musl", "transfer": "flip", "basis": "bspline2", "dt": 0.001, "end_time": 3.0 }
+})";
+
+void replace_text(std::string& json, const std::string& from, const std::string& to) {
+  json.replace(json.find(from), from.size(), to);
+}
+
+/// The set-up's boxes of bricks on the world's ranks (BoxPartition::ints: per rank begin, end).
+template <int D, class Stencils>
+std::vector<IndexBox<D>> boxes_of(const std::string& json) {
+  const ExplicitSolver<D, Stencils> solver(parse_spec(json), Communicator::world());
+  const std::vector<int>& ints = solver.sim().partition;
+  std::vector<IndexBox<D>> out;
+  for (std::size_t k = 0; k + 2 * D <= ints.size(); k += 2 * D) {
+    IndexBox<D> box;
+    for (int a = 0; a < D; ++a) box.begin[a] = ints[k + a], box.end[a] = ints[k + D + a];
+    out.push_back(box);
+  }
+  return out;
+}
+
+TEST(DecomposedRun, ChannelIsCutIntoBoxes) {
+  using Stencils = TensorStencils<2, QuadraticBSplineBasis>;
+  const auto boxes = boxes_of<2, Stencils>(kChannelDisks);
+  const int P = Communicator::world().size();
+  if (P == 2) {
+    EXPECT_EQ(boxes[0], (IndexBox<2>{{0, 0}, {3, 4}})) << "the x cut at brick column 3 (x = 1.92 m)";
+    EXPECT_EQ(boxes[1], (IndexBox<2>{{3, 0}, {6, 4}}));
+  }
+  if (P == 4) {
+    for (int r = 0; r < 4; ++r) {
+      EXPECT_EQ(boxes[static_cast<std::size_t>(r)].begin[0], r < 2 ? 0 : 3) << "rank " << r;
+      EXPECT_EQ(boxes[static_cast<std::size_t>(r)].end[0], r < 2 ? 3 : 6) << "rank " << r;
+      EXPECT_GT(boxes[static_cast<std::size_t>(r)].end[1] - boxes[static_cast<std::size_t>(r)].begin[1], 0);
+      EXPECT_LT(boxes[static_cast<std::size_t>(r)].end[1] - boxes[static_cast<std::size_t>(r)].begin[1], 4)
+          << "rank " << r << " spans every brick row: a slab, not a box";
+    }
+  }
+}
+
+TEST(DecomposedRun, TwoDisksOnBoxesEqualSerialRunBitwise) {
+  expect_equal_to_serial<TensorStencils<2, QuadraticBSplineBasis>>(kChannelDisks, 800);
+}
+
+// The ghost particles on boxes (explicit/near_particles.hpp): the IMPM reconstructions near a
+// box's corner read particles of three other ranks (the options of two_disks_impm()).
+TEST(DecomposedRun, TwoDisksWithImpmOnBoxesEqualSerialRunBitwise) {
+  std::string json = kChannelDisks;
+  replace_text(json, R"("basis": "bspline2")",
+               R"("basis": "linear", "mapping": "impm",
+                  "mls": { "quadrature": "gauss_2x2", "cell_volume": "particle_fraction" })");
+  expect_equal_to_serial<TensorStencils<2, LinearBasis>>(json, 500);
+}
+
+// Multi-field contact with the logistic-regression normals on boxes (explicit/seen_particles.hpp:
+// the nodes two boxes share, corners included), Coulomb friction, FMPM(4), CPDI1.
+TEST(DecomposedRun, ContactDisksWithLogisticNormalsOnBoxesEqualSerialRunBitwise) {
+  std::string json = kChannelDisks;
+  json.replace(json.find(R"("solver")"), 0,
+               R"("contact": { "law": "coulomb", "friction": 0.3, "normals": "logistic_regression" }, )");
+  replace_text(json, R"("scheme": "musl", "transfer": "flip", "basis": "bspline2")",
+               R"("scheme": "usl", "transfer": "fmpm", "fmpm": { "order": 4 }, "basis": "cpdi1")");
+  expect_equal_to_serial<FieldStencils<2, CpdiStencils<2, HatKernel, CpdiDomain::Parallelogram>>>(json, 500);
+}
+
+// A cube-like 3-D domain (bench/scaling.md: slabs run out of brick layers): 32^3 cells of 1/32 m
+// are 1 x 4 x 4 bricks (32 x 8 x 8 cells each), which two ranks cut along z and four ranks into
+// 2 x 2 boxes in y and z. A rubber ball thrown down and sideways bounces on the fixed floor z-
+// across the cuts; MUSL, FLIP, quadratic B-splines, 8 particles per cell.
+const char* const kBall = R"({
+  "grid": { "dim": 3, "min": [0, 0, 0], "max": [1, 1, 1], "cell_size": 0.03125 },
+  "materials": [ { "name": "rubber", "model": "neo_hookean", "density": 1000, "E": 1e4, "nu": 0.3 } ],
+  "bodies": [ { "name": "ball", "material": "rubber", "shape": { "type": "sphere", "center": [0.5, 0.45, 0.3], "radius": 0.2 },
+                "particles_per_cell": 2, "velocity": [0, 0.3, -1] } ],
+  "boundary_conditions": [ { "face": "z-", "type": "fixed" } ],
+  "loads": { "gravity": [0, 0, -9.81] },
+  "solver": { "scheme": "musl", "transfer": "flip", "basis": "bspline2", "courant": 0.5, "end_time": 1.0 }
+})";
+
+TEST(DecomposedRun, BallOnTwoByTwoBoxesEqualsSerialRunBitwise) {
+  using Stencils = TensorStencils<3, QuadraticBSplineBasis>;
+  const auto boxes = boxes_of<3, Stencils>(kBall);
+  if (Communicator::world().size() == 4) {
+    for (int r = 0; r < 4; ++r) {
+      const IndexBox<3>& box = boxes[static_cast<std::size_t>(r)];
+      EXPECT_EQ(box.end[1] - box.begin[1] < 4 && box.end[2] - box.begin[2] < 4, true)
+          << "rank " << r << ": cut along both y and z";
+    }
+  }
+  expect_equal_to_serial<Stencils, 3>(kBall, 150);
 }
 
 }  // namespace

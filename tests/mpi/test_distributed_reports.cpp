@@ -84,8 +84,8 @@ Simulation<2> rank_part(const Simulation<2>& whole, const Communicator& comm) {
                    copy.begin() + static_cast<std::ptrdiff_t>((p + 1) * count));
   });
   const Index n = whole.grid.node_count;
-  sim.owned_nodes_begin = n * static_cast<Index>(r) / static_cast<Index>(P);
-  sim.owned_nodes_end = n * static_cast<Index>(r + 1) / static_cast<Index>(P);
+  sim.owned_nodes = OwnedNodes::range(n * static_cast<Index>(r) / static_cast<Index>(P),
+                                      n * static_cast<Index>(r + 1) / static_cast<Index>(P));
   sim.external_work /= static_cast<double>(P);
   sim.friction_work /= static_cast<double>(P);
   sim.external_impulse /= static_cast<double>(P);

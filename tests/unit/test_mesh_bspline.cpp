@@ -17,7 +17,7 @@
 #include "matpoint/mesh/point_locator.hpp"
 #include "matpoint/mesh/structured_mesh.hpp"
 
-namespace {
+namespace mesh_bspline_tests {
 
 using namespace matpoint;
 using namespace matpoint::mesh;
@@ -268,4 +268,4 @@ TEST(BSplinePatch, UnequalCellsAreRefused) {
       std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace mesh_bspline_tests

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/grid/owned_nodes.hpp"
 #include "matpoint/parallel/communicator.hpp"
 
 namespace matpoint {
@@ -22,13 +23,12 @@ struct GridModes {
 };
 
 /// The nodes a rank counts in a decomposed run (a node near a rank boundary is stored by two
-/// ranks with the same values): the flat node indices
-/// [begin, end) it owns (Simulation::owns_node), and the ranks to sum over. The default: one rank
-/// that owns every node.
+/// ranks with the same values): those it owns (Simulation::owned_nodes), and the ranks to sum
+/// over. The default: one rank that owns every node.
 struct NodeOwnership {
   Communicator comm;
-  Index begin = 0, end = std::numeric_limits<Index>::max();
-  [[nodiscard]] bool owns(Index node) const { return node >= begin && node < end; }
+  OwnedNodes owned;
+  [[nodiscard]] bool owns(Index node) const { return owned.contains(node); }
 };
 
 /// Every rank calls it in a decomposed run (a collective): the sums run over the owned nodes (a

@@ -21,6 +21,7 @@
 #include "matpoint/explicit/seen_particles.hpp"
 #include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/grid/owned_nodes.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/parallel/communicator.hpp"
 #include "matpoint/particles/particle_set.hpp"
@@ -58,20 +59,19 @@ class MultiFieldContact {
 
   /// A decomposed run (docs/scale-out.md §17 stage 3): the ranks decide together whether the
   /// normals' sums run (they are collectives: any rank with a contact node), and friction_work
-  /// counts only the grid nodes [begin, end) (of N) this rank owns, so that a node two ranks store
+  /// counts only the grid nodes (of N) this rank owns, so that a node two ranks store
   /// counts once when the ranks' works are added. Every rank finds the contact nodes among the
   /// nodes it stores, where the scatter's hand-off completed the sums.
-  void decompose(const Communicator& comm, Index begin, Index end) {
+  void decompose(const Communicator& comm, const OwnedNodes& owned) {
     comm_ = comm;
-    counted_begin_ = begin, counted_end_ = end;
+    counted_ = owned;
   }
 
-  /// A decomposed run's logistic-regression normals (explicit/seen_particles.hpp): the node layers
-  /// along `axis` that this rank shares with each other rank, and the particles' sort keys (their
+  /// A decomposed run's logistic-regression normals (explicit/seen_particles.hpp): the nodes that
+  /// this rank shares with each other rank, and the particles' sort keys (their
   /// serial storage order with the ids), which the fit of a shared node reads in merged order.
-  void share_nodes(std::vector<SharedNodeLayers> shared, int axis, const std::vector<Index>* sort_keys) {
+  void share_nodes(std::vector<SharedNodes<D>> shared, const std::vector<Index>* sort_keys) {
     shared_ = std::move(shared);
-    shared_axis_ = axis;
     sort_keys_ = sort_keys;
   }
 
@@ -174,7 +174,7 @@ class MultiFieldContact {
     const auto v = [&](Index i) -> Vec<D> { return velocity[i]; };
     double work = 0.0;
     for (const auto& e : entries_)
-      if (e.law.law == ContactLaw::Coulomb && e.node >= counted_begin_ && e.node < counted_end_)
+      if (e.law.law == ContactLaw::Coulomb && counted_.contains(e.node))
         work += slip_work(e, e.total, mass, v);
     return work;
   }
@@ -315,7 +315,7 @@ class MultiFieldContact {
       });
     if (!comm_.distributed()) return;
     seen_.resize(slot_node_.size());
-    exchange_seen_particles<D>(comm_, grid, shared_axis_, shared_, slot_node_, slot_of_node_, seen_);
+    exchange_seen_particles<D>(comm_, grid, shared_, slot_node_, slot_of_node_, seen_);
     for (auto& list : seen_)
       std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.before(b); });
   }
@@ -336,7 +336,7 @@ class MultiFieldContact {
     const auto fit = logistic_normal<D>(std::span<const LabelledPoint<D>>(points_));
     if (!fit.found) {
       // A node two ranks store fails on both: the rank that owns it counts it.
-      if (e.node >= counted_begin_ && e.node < counted_end_) ++logistic_fallbacks_;
+      if (counted_.contains(e.node)) ++logistic_fallbacks_;
       return;
     }
     e.normal = fit.normal;
@@ -426,13 +426,12 @@ class MultiFieldContact {
   std::vector<int> slot_of_node_;                   // logistic regression: grid node -> slot, or -1
   std::vector<Index> slot_node_;                    // by slot: its grid node
   std::vector<std::vector<SeenParticle<D>>> seen_;  // by slot: the particles that see the node
-  std::vector<SharedNodeLayers> shared_;            // a decomposed run: the layers shared per rank
-  int shared_axis_ = 0;                             // the axis of those layers (the cut)
+  std::vector<SharedNodes<D>> shared_;              // a decomposed run: the nodes shared per rank
   const std::vector<Index>* sort_keys_ = nullptr;   // a decomposed run: the particles' sort keys
   std::vector<LabelledPoint<D>> points_;            // scratch for one fit
   std::size_t logistic_fallbacks_ = 0;
-  Communicator comm_;  // a decomposed run's ranks (decompose()); one rank by default
-  Index counted_begin_ = 0, counted_end_ = std::numeric_limits<Index>::max();  // friction_work's nodes
+  Communicator comm_;   // a decomposed run's ranks (decompose()); one rank by default
+  OwnedNodes counted_;  // friction_work's nodes
 };
 
 }  // namespace matpoint

@@ -22,9 +22,9 @@
 #include "matpoint/explicit/near_particles.hpp"
 #include "matpoint/explicit/scatter.hpp"
 #include "matpoint/explicit/simulation.hpp"
+#include "matpoint/parallel/box_partition.hpp"
 #include "matpoint/parallel/colour_hand_off.hpp"
 #include "matpoint/parallel/particle_migration.hpp"
-#include "matpoint/parallel/slab_partition.hpp"
 #include "matpoint/particles/generators.hpp"
 #include "matpoint/shape/domain_motion.hpp"
 
@@ -161,7 +161,7 @@ class ExplicitStepper {
     double next_fmpm_time = 0.0;  // periodic FMPM
     double total_mass = 0.0;      // summed in the particle order of the first step (this rank's)
     FmpmStatistics fmpm;
-    // A decomposed run: the partition (SlabPartition::first_layers) and this rank's migration
+    // A decomposed run: the partition (BoxPartition::ints) and this rank's migration
     // state, by which the particles that arrived since the last sort take the serial order.
     std::vector<int> partition;
     std::vector<Index> sort_keys;
@@ -170,7 +170,7 @@ class ExplicitStepper {
   [[nodiscard]] State state() const {
     State out{next_fmpm_time_, total_mass_, fmpm_.statistics(), {}, {}, 0};
     if (ranks_) {
-      out.partition = ranks_->partition.first_layers();
+      out.partition = ranks_->partition.ints();
       out.sort_keys = ranks_->migration.keys();
       out.sorted_prefix = ranks_->migration.sorted_prefix();
     }
@@ -183,7 +183,7 @@ class ExplicitStepper {
     total_mass_ = state.total_mass;
     fmpm_.restore_statistics(state.fmpm);
     if (ranks_ && !state.partition.empty()) {
-      use_partition(SlabPartition<D>::from_first_layers(s_.grid, state.partition));
+      use_partition(BoxPartition<D>::from_ints(whole_grid_, state.partition));
       ranks_->migration.restore(state.sort_keys, state.sorted_prefix);
     }
   }
@@ -252,8 +252,7 @@ class ExplicitStepper {
       return s_.particles;
     }
     const auto band_of = [this](int r) {
-      const auto [first_node, end_node] = stored_node_layers_of(r);
-      return NearParticles<D>::mls_band(whole_grid_, first_node, end_node);
+      return NearParticles<D>::mls_band(whole_grid_, stored_nodes_of(r));
     };
     mls_neighbours_.gather(s_.comm, whole_grid_, s_.particles, ranks_->migration.keys(), body, band_of);
     body = mls_neighbours_.body();
@@ -266,16 +265,16 @@ class ExplicitStepper {
   /// contact's nodal volumes (ThermalContactCoupling::add_domain_volumes), with their field offsets and
   /// the band grid that holds their domain stencils.
   void gather_near_domains() {
-    constexpr int kCut = SlabPartition<D>::kAxis, kWidth = ThermalContactCoupling<D>::kWidestDomain;
+    constexpr int kWidth = ThermalContactCoupling<D>::kWidestDomain;
     const auto band_of = [this](int r) {
-      const auto [first_node, end_node] = stored_node_layers_of(r);
-      return NearParticles<D>::domain_band(whole_grid_, first_node, end_node, kWidth);
+      return NearParticles<D>::domain_band(whole_grid_, stored_nodes_of(r), kWidth);
     };
     heat_neighbours_.gather(s_.comm, whole_grid_, s_.particles, ranks_->migration.keys(), nullptr, band_of);
     const ParticleSet<D>& near = heat_neighbours_.particles();
-    const auto [first_cell, end_cell] = heat_neighbours_.band();
+    IndexBox<D> band = heat_neighbours_.band();  // cells; the nodes their domains reach:
+    for (int a = 0; a < D; ++a) band.begin[a] -= kWidth, band.end[a] += kWidth;
     near_domains_.particles = &near;
-    near_domains_.band = whole_grid_.window(kCut, first_cell - kWidth, end_cell + kWidth);
+    near_domains_.band = whole_grid_.window(band);
     near_domains_.offset.resize(near.size());
     const Index field_nodes = s_.grid.node_count;
     for (std::size_t p = 0; p < near.size(); ++p)
@@ -291,49 +290,52 @@ class ExplicitStepper {
     Vec<D> grid = Vec<D>::Zero(), particles = Vec<D>::Zero();
     const auto& momentum = s_.fields.momentum;
     const Index n = s_.grid.node_count;
-    const auto end = std::min<Index>(s_.owned_nodes_end, n);
     for (Index f = 0; f < static_cast<Index>(momentum.size()); f += n)
-      for (Index i = s_.owned_nodes_begin; i < end; ++i) grid += momentum[f + i];
+      s_.owned_nodes.for_each_run(n, [&](Index begin, Index end) {
+        for (Index i = begin; i < end; ++i) grid += momentum[f + i];
+      });
     for (std::size_t p = 0; p < s_.particles.size(); ++p)
       particles += s_.particles.mass[p] * s_.particles.v[p];
     s_.grid_momentum_difference = grid - particles;
   }
 
-  /// A decomposed run (docs/scale-out.md): the slab partition by particle count that the set-up
-  /// generated this rank's particles for (Simulation::first_layers), their sort keys, the owned
+  /// A decomposed run (docs/scale-out.md): the boxes balanced by particle count that the set-up
+  /// generated this rank's particles for (Simulation::partition), their sort keys, the owned
   /// nodes, and the hand-off between the colours of every particle-to-grid sum.
   void decompose() {
-    if (s_.first_layers.empty())
+    if (s_.partition.empty())
       throw std::logic_error(
           "a decomposed run needs the set-up's partition (build_simulation with the ranks)");
-    use_partition(SlabPartition<D>::from_first_layers(s_.grid, s_.first_layers));
+    use_partition(BoxPartition<D>::from_ints(whole_grid_, s_.partition));
     ranks_->migration.start(s_.particles);
   }
 
   /// The partition's hand-off, migration and owned nodes (the particles are left as they are).
   /// The rank stores the whole grid until the first step's stencils tell how far they reach.
-  void use_partition(SlabPartition<D> partition) {
+  void use_partition(BoxPartition<D> partition) {
     ranks_ = std::make_unique<Ranks>(s_.grid, std::move(partition), s_.comm);
     window_reach_ = {-1, -1};
     fit_window();
     brick_schedule().boundary = &ranks_->hand_off;
   }
 
-  /// The grid window this rank stores (docs/scale-out.md §2): along the cut axis the node layers
-  /// its particles' stencils reach under the reach every rank agreed on (window_reach_; the whole
-  /// grid before the first agreement), every node along the others. Every node array and node
+  /// The grid window this rank stores (docs/scale-out.md §2): the box of nodes its particles'
+  /// stencils reach under the reach every rank agreed on (window_reach_; the whole grid before the
+  /// first agreement). Every node array and node
   /// list follows it: the grid's fields and scratch, the velocity and thermal conditions, the
   /// contact's and the stencils' node counts, the frictional heat that waits for the next step,
   /// the owned range and the hand-off's lists (rebuilt at the next agree_reach). Called when the
   /// partition or the agreed reach changes, between steps or right after the stencils' evaluation
   /// (which is then repeated), never while a node array holds a step's values.
   void fit_window() {
-    constexpr int kCut = SlabPartition<D>::kAxis;
     const auto [below, above] = window_reach_;
-    auto [begin, end] = stored_node_layers_of(s_.comm.rank());
-    if (begin == end) end = begin + 1;  // a rank without cells: one node layer, never reached
+    IndexBox<D> stored = stored_nodes_of(s_.comm.rank());
+    if (stored.empty()) {  // a rank without cells: one node, never reached
+      stored.begin.fill(0);
+      stored.end.fill(1);
+    }
     const Grid<D> old = s_.grid;
-    s_.grid = whole_grid_.window(kCut, begin, end);
+    s_.grid = whole_grid_.window(stored);
     const Index n = s_.grid.node_count;
     s_.fields.resize(field_count_ * n);
     velocity_.assign(static_cast<std::size_t>(field_count_ * n), Vec<D>::Zero());
@@ -350,79 +352,73 @@ class ExplicitStepper {
     if constexpr (kFields) share_contact_nodes(below, above);
   }
 
-  /// The node layers [begin, end) along the cut axis that rank r's window holds: those its
-  /// particles' stencils reach under the agreed reach, the whole grid before the first agreement
-  /// (none for a rank without cells).
-  [[nodiscard]] std::pair<int, int> stored_node_layers_of(int r) const {
+  /// The nodes that rank r's window holds: those its particles' stencils reach under the agreed
+  /// reach, the whole grid before the first agreement (none for a rank without cells).
+  [[nodiscard]] IndexBox<D> stored_nodes_of(int r) const {
     const auto [below, above] = window_reach_;
-    if (below < 0) return {0, whole_grid_.cells[SlabPartition<D>::kAxis] + 1};
+    if (below < 0) return whole_grid_.stored_nodes();
     return ranks_->partition.stored_nodes_of(r, below, above);
   }
 
-  /// The node layers this rank stores together with each other rank (for the logistic contact
-  /// normals of the nodes near the rank boundaries: explicit/seen_particles.hpp).
+  /// The nodes this rank stores together with each other rank (for the logistic contact normals
+  /// of the nodes near the rank boundaries: explicit/seen_particles.hpp).
   void share_contact_nodes(int below, int above) {
-    std::vector<SharedNodeLayers> shared;
+    std::vector<SharedNodes<D>> shared;
     const int me = s_.comm.rank();
     if (below >= 0)
       for (int r = 0; r < s_.comm.size(); ++r) {
-        const auto [begin, end] = ranks_->partition.shared_nodes_of(me, r, below, above);
-        if (r != me && begin < end) shared.push_back({r, begin, end});
+        const IndexBox<D> nodes = ranks_->partition.shared_nodes_of(me, r, below, above);
+        if (r != me && !nodes.empty()) shared.push_back({r, nodes});
       }
-    s_.contact.share_nodes(std::move(shared), SlabPartition<D>::kAxis, &ranks_->migration.keys());
+    s_.contact.share_nodes(std::move(shared), &ranks_->migration.keys());
   }
 
   /// This rank's owned nodes (the node sums it reports) under the present partition and window:
   /// at the start, after a re-partition, at a restart with the stored partition, and whenever the
   /// window changes.
   void claim_owned_nodes() {
-    constexpr int kCut = SlabPartition<D>::kAxis;
-    const auto [first, end] = ranks_->partition.owned_nodes_of(s_.comm.rank());
-    const Index stride = s_.grid.stride[kCut];
-    s_.owned_nodes_begin = std::max(0, first - s_.grid.first[kCut]) * stride;
-    s_.owned_nodes_end = std::max(0, end - s_.grid.first[kCut]) * stride;
-    s_.conditions.count_only(s_.owned_nodes_begin, s_.owned_nodes_end);
+    s_.owned_nodes = OwnedNodes::box(s_.grid, ranks_->partition.owned_nodes_of(s_.comm.rank()));
+    s_.conditions.count_only(s_.owned_nodes);
     count_owned_nodes_only();
   }
 
-  /// The owned node range, to everything that counts owned nodes only besides the Simulation's
+  /// The owned nodes, to everything that counts owned nodes only besides the Simulation's
   /// conditions: the dynamic FMPM measure, the contact's friction work, the heat conditions.
   void count_owned_nodes_only() {
-    fmpm_.decompose(s_.comm, s_.owned_nodes_begin, s_.owned_nodes_end, s_.grid.node_count);
-    mls_.count_only(s_.owned_nodes_begin, s_.owned_nodes_end, ranks_->partition.cells_of(s_.comm.rank()));
-    if constexpr (kFields) s_.contact.decompose(s_.comm, s_.owned_nodes_begin, s_.owned_nodes_end);
+    fmpm_.decompose(s_.comm, s_.owned_nodes, s_.grid.node_count);
+    mls_.count_only(s_.owned_nodes, ranks_->partition.cells_of(s_.comm.rank()));
+    if constexpr (kFields) s_.contact.decompose(s_.comm, s_.owned_nodes);
     if (heat_.active()) heat_.count_only(s_);
   }
 
-  /// Load balance (docs/scale-out.md §10), at a re-sort: the particle count per brick layer of all
-  /// ranks from one reduction; when the busiest rank holds more than solver.rebalance.imbalance
-  /// times the mean, the slabs are cut anew where the particles lie and the particles move to
+  /// Load balance (docs/scale-out.md §10), at a re-sort: the particle count per brick of all ranks
+  /// from one reduction; when the busiest rank holds more than solver.rebalance.imbalance times
+  /// the mean, the boxes are cut anew where the particles lie and the particles move to
   /// their new ranks (the migration, with any destination). Arrivals keep their sort keys, so the
   /// storage order, and with it every result, stays the serial run's.
   void rebalance() {
     const RebalanceSpec& spec = s_.solver.rebalance;
     if (!spec.enabled || s_.step - ranks_->partitioned_at < spec.min_steps) return;
-    constexpr int kCut = SlabPartition<D>::kAxis;
-    SlabPartition<D>& partition = ranks_->partition;
-    std::vector<double> count(static_cast<std::size_t>(BrickSchedule<D>::bricks_along(s_.grid, kCut)), 0.0);
+    BoxPartition<D>& partition = ranks_->partition;
+    std::vector<double> count(partition.brick_count(), 0.0);
     for (const auto& x : s_.particles.x)
-      count[static_cast<std::size_t>(SlabPartition<D>::layer_of(s_.grid.cell_coords(x)[kCut]))] += 1.0;
+      count[static_cast<std::size_t>(partition.brick_of_cell(s_.grid.cell_coords(x)))] += 1.0;
     s_.comm.sum(count);  // particle counts: exact in doubles, the same on every rank
     std::vector<double> on_rank(static_cast<std::size_t>(s_.comm.size()), 0.0);
     double total = 0.0;
-    for (std::size_t l = 0; l < count.size(); ++l) {
-      on_rank[static_cast<std::size_t>(partition.owner_of_layer(static_cast<int>(l)))] += count[l];
-      total += count[l];
+    for (std::size_t b = 0; b < count.size(); ++b) {
+      on_rank[static_cast<std::size_t>(partition.owner_of_brick(static_cast<Index>(b)))] += count[b];
+      total += count[b];
     }
     const double busiest = *std::max_element(on_rank.begin(), on_rank.end());
     if (busiest <= spec.imbalance * total / s_.comm.size()) return;
-    ranks_->partitioned_at = s_.step;  // also when the layers allow no better cut: check again later
+    ranks_->partitioned_at = s_.step;  // also when the bricks allow no better cut: check again later
     std::vector<std::size_t> whole(count.size());
-    for (std::size_t l = 0; l < count.size(); ++l) whole[l] = static_cast<std::size_t>(count[l]);
-    auto cut = SlabPartition<D>::balanced(s_.grid, whole, s_.comm.size());
-    if (cut.first_layers() == partition.first_layers()) return;
+    for (std::size_t b = 0; b < count.size(); ++b) whole[b] = static_cast<std::size_t>(count[b]);
+    auto cut = BoxPartition<D>::balanced(whole_grid_, whole, s_.comm.size());
+    if (cut == partition) return;
     partition = std::move(cut);  // the hand-off and the migration hold a reference to it
-    fit_window();                // the new slab's nodes, under the reach agreed so far
+    fit_window();                // the new box's nodes, under the reach agreed so far
     ranks_->migration.migrate(s_.particles);
     ++ranks_->repartitions;
   }
@@ -655,9 +651,9 @@ class ExplicitStepper {
 
   /// A decomposed run's partition, hand-off and migration (null in a serial run).
   struct Ranks {
-    Ranks(const Grid<D>& grid, SlabPartition<D> slabs, const Communicator& comm)
-        : partition(std::move(slabs)), hand_off(grid, partition, comm), migration(grid, partition, comm) {}
-    SlabPartition<D> partition;
+    Ranks(const Grid<D>& grid, BoxPartition<D> boxes, const Communicator& comm)
+        : partition(std::move(boxes)), hand_off(grid, partition, comm), migration(grid, partition, comm) {}
+    BoxPartition<D> partition;
     ColourHandOff<D> hand_off;
     ParticleMigration<D> migration;
     long partitioned_at = 0;  // the step of the last re-partition (0: the start)

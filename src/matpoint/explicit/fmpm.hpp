@@ -18,11 +18,13 @@
 #include <cmath>
 #include <functional>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "matpoint/core/exact_sum.hpp"
 #include "matpoint/explicit/scalar_scatter.hpp"
 #include "matpoint/explicit/scatter.hpp"
+#include "matpoint/grid/owned_nodes.hpp"
 #include "matpoint/grid/velocity_conditions.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/parallel/communicator.hpp"
@@ -112,11 +114,11 @@ class FmpmLoop {
     correction_ = std::move(correction);
   }
 
-  /// A decomposed run: the dynamic measures count the grid nodes [begin, end) (of `field_nodes`,
-  /// in every field) this rank owns and add up over `comm`'s ranks, exactly (measure()).
-  void decompose(const Communicator& comm, Index begin, Index end, Index field_nodes) {
+  /// A decomposed run: the dynamic measures count the grid nodes `owned` (of `field_nodes`, in
+  /// every field) this rank owns and add up over `comm`'s ranks, exactly (measure()).
+  void decompose(const Communicator& comm, OwnedNodes owned, Index field_nodes) {
     comm_ = comm;
-    owned_begin_ = begin, owned_end_ = end, field_nodes_ = field_nodes;
+    owned_ = std::move(owned), field_nodes_ = field_nodes;
   }
 
   [[nodiscard]] const FmpmStatistics& statistics() const { return statistics_; }
@@ -218,7 +220,7 @@ class FmpmLoop {
       if (!(mass[i] > mass_floor)) return false;
       if (field_nodes_ == 0) return true;  // one rank: every node
       const Index node = static_cast<Index>(i) % field_nodes_;
-      return node >= owned_begin_ && node < owned_end_;
+      return owned_.contains(node);
     };
     for (std::size_t i = 0; i < v.size(); ++i)
       if (counted(i)) largest = std::max(largest, magnitude(v[i]));
@@ -254,7 +256,8 @@ class FmpmLoop {
   const std::vector<double>* weights_ = nullptr;  // transport: w_p
   std::function<void(std::vector<Value>&)> correction_;
   Communicator comm_;  // a decomposed run's ranks (decompose()); one rank by default
-  Index owned_begin_ = 0, owned_end_ = 0, field_nodes_ = 0;  // field_nodes_ 0: every node counts
+  OwnedNodes owned_;
+  Index field_nodes_ = 0;  // 0: every node counts
 };
 
 }  // namespace matpoint

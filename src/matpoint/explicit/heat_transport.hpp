@@ -46,14 +46,14 @@ class HeatTransport {
       heaviest = std::max(heaviest, sim.particles.mass[p] * sim.heat_capacity[sim.particles.material[p]]);
     floor_ = sim.solver.mass_tolerance * sim.comm.max(heaviest);  // a decomposed run: of every rank
     if (sim.comm.distributed())
-      conditions_.count_only(sim.owned_nodes_begin, sim.owned_nodes_end, sim.grid.node_count);
+      conditions_.count_only(sim.owned_nodes, sim.grid.node_count);
   }
 
   [[nodiscard]] bool active() const { return active_; }
 
   /// A decomposed run's owned nodes changed (a re-partition): the conditions' heat counts them.
   void count_only(const Simulation<D>& sim) {
-    conditions_.count_only(sim.owned_nodes_begin, sim.owned_nodes_end, sim.grid.node_count);
+    conditions_.count_only(sim.owned_nodes, sim.grid.node_count);
   }
 
   /// A decomposed run's rank stores another window of the grid (sim.grid, `old` the last one):

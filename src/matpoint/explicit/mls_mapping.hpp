@@ -11,13 +11,15 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <limits>
 #include <utility>
 #include <vector>
 
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/grid_fields.hpp"
+#include "matpoint/grid/index_box.hpp"
+#include "matpoint/grid/owned_nodes.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/particles/particle_bins.hpp"
 #include "matpoint/particles/particle_set.hpp"
@@ -38,18 +40,20 @@ class MlsMapping {
 
   explicit MlsMapping(const MlsSpec& spec = {}) : spec_(spec) {}
 
-  /// Bins the particles by cell at their current positions (before each set of transfers);
-  /// `layers`: the cell layers along the last axis where they lie (ParticleBins::build).
-  void bin(const Grid<D>& grid, const ParticleSet<D>& particles, std::pair<int, int> layers = {0, -1}) {
-    bins_.build(grid, particles.x, layers);
+  /// Bins the particles by cell at their current positions (before each set of transfers).
+  void bin(const Grid<D>& grid, const ParticleSet<D>& particles) { bins_.build(grid, particles.x); }
+  /// The same for particles that lie in the box `cells` (a decomposed run's near particles).
+  void bin(const Grid<D>& grid, const ParticleSet<D>& particles, const IndexBox<D>& cells) {
+    bins_.build(grid, particles.x, cells);
   }
 
-  /// A rank of a decomposed run counts the reconstructions at its owned nodes [begin, end) and in
-  /// its owned cell layers [first, end) along the last axis only, so that the ranks' counts add up
-  /// to the serial run's (it evaluates every node and cell of its window).
-  void count_only(Index node_begin, Index node_end, std::pair<int, int> cell_layers) {
-    counted_nodes_ = {node_begin, node_end};
-    counted_cell_layers_ = cell_layers;
+  /// A rank of a decomposed run counts the reconstructions at its owned nodes and in its owned
+  /// cells only, so that the ranks' counts add up to the serial run's (it evaluates every node and
+  /// cell of its window).
+  void count_only(const OwnedNodes& nodes, const IndexBox<D>& cells) {
+    counted_nodes_ = nodes;
+    counted_cells_ = cells;
+    count_every_cell_ = false;
   }
 
   /// p_i = m_i v_i with v_i from (5.15) on the nodes heavier than mass_floor; zero elsewhere.
@@ -74,7 +78,7 @@ class MlsMapping {
       });
       Vec<D> v;
       const MlsStatus status = sums.solve(spec_.degree, v);
-      if (i >= counted_nodes_.first && i < counted_nodes_.second) {
+      if (counted_nodes_.contains(i)) {
         ++evaluations;
         if (status == MlsStatus::Shepard) ++fallbacks;
       }
@@ -92,26 +96,19 @@ class MlsMapping {
     reconstruct_at_cell_points(grid, particles, gravity, body);
     const auto n = static_cast<std::ptrdiff_t>(grid.node_count);
     const int q_count = points_per_cell();
-    const std::pair<int, int> layers = window_cells(grid);
-    const int first_layer = layers.first, end_layer = layers.second;
+    const IndexBox<D> cells = window_cells(grid);
 #pragma omp parallel for schedule(static) if (n > kParallelMinimum)
     for (std::ptrdiff_t i = 0; i < n; ++i) {
       const auto ijk = grid.node_coords(i);
       double m = 0.0;
       Vec<D> f = Vec<D>::Zero();
       for (int e = 0; e < (1 << D); ++e) {  // the cells with node i as a corner: cell = node - e
-        Index c = 0, stride = 1;
-        bool inside = true;
-        for (int a = 0; a < D; ++a) {
-          const int ca = ijk[a] - ((e >> a) & 1);
-          inside =
-              inside && ca >= (a == D - 1 ? first_layer : 0) && ca < (a == D - 1 ? end_layer : grid.cells[a]);
-          c += ca * stride;
-          stride *= grid.cells[a];
-        }
-        if (!inside) continue;
+        std::array<int, D> cell{};
+        for (int a = 0; a < D; ++a) cell[a] = ijk[a] - ((e >> a) & 1);
+        if (!cells.contains(cell)) continue;
+        const Index local = local_cell(cells, cell);
         for (int q = 0; q < q_count; ++q) {
-          const Index k = (c - first_cell_) * q_count + q;
+          const Index k = local * q_count + q;
           double N = 1.0;
           Vec<D> dN = Vec<D>::Ones();
           for (int a = 0; a < D; ++a) {  // bilinear N_i at the point's local coordinate xi
@@ -133,11 +130,24 @@ class MlsMapping {
   [[nodiscard]] const MlsStatistics& statistics() const { return stats_; }
 
  private:
-  /// The cell layers along the last axis that the grid's stored nodes touch: every cell of a
-  /// serial run's grid, the window's cells on a rank of a decomposed run.
-  static std::pair<int, int> window_cells(const Grid<D>& grid) {
-    constexpr int a = D - 1;
-    return {std::max(0, grid.first[a] - 1), std::min(grid.cells[a], grid.first[a] + grid.nodes[a])};
+  /// The cells that the grid's stored nodes touch: every cell of a serial run's grid, the
+  /// window's cells on a rank of a decomposed run.
+  static IndexBox<D> window_cells(const Grid<D>& grid) {
+    IndexBox<D> box;
+    for (int a = 0; a < D; ++a)
+      box.begin[a] = std::max(0, grid.first[a] - 1),
+      box.end[a] = std::min(grid.cells[a], grid.first[a] + grid.nodes[a]);
+    return box;
+  }
+  /// The index of a cell of the box `cells` among the box's cells (x fastest): where its points'
+  /// values are.
+  static Index local_cell(const IndexBox<D>& cells, const std::array<int, D>& cell) {
+    Index n = 0, stride = 1;
+    for (int a = 0; a < D; ++a) {
+      n += static_cast<Index>(cell[a] - cells.begin[a]) * stride;
+      stride *= cells.end[a] - cells.begin[a];
+    }
+    return n;
   }
 
   [[nodiscard]] int points_per_cell() const {
@@ -154,11 +164,8 @@ class MlsMapping {
   /// rho_c Omega, sigma_c Omega and rho_c (g + b_c) Omega at every cell point (Omega = Omega_c / points).
   void reconstruct_at_cell_points(const Grid<D>& grid, const ParticleSet<D>& particles, const Vec<D>& gravity,
                                   const std::vector<Vec<D>>* body) {
-    Index per_layer = 1;  // cells of one layer along the last axis
-    for (int a = 0; a + 1 < D; ++a) per_layer *= grid.cells[a];
-    const std::pair<int, int> layers = window_cells(grid);
-    first_cell_ = layers.first * per_layer;
-    const Index cells = (layers.second - layers.first) * per_layer;
+    const IndexBox<D> box = window_cells(grid);
+    const Index cells = box.size();
     const int q_count = points_per_cell();
     point_mass_.resize(cells * q_count);
     point_stress_.resize(cells * q_count);
@@ -166,18 +173,21 @@ class MlsMapping {
     const Vec<D> inv_h = grid.h.cwiseInverse();
     long evaluations = 0, fallbacks = 0;
     const auto n = static_cast<std::ptrdiff_t>(cells);
-    const int counted_first = counted_cell_layers_.first, counted_end = counted_cell_layers_.second;
 #pragma omp parallel for schedule(static) if (n > 256) reduction(+ : evaluations, fallbacks)
     for (std::ptrdiff_t local = 0; local < n; ++local) {
-      const Index c = first_cell_ + local;  // flat index of the whole grid's cell
-      const double omega = cell_volume(grid, particles, c) / q_count;
-      const int layer = static_cast<int>(c / per_layer);
-      const bool counted = layer >= counted_first && (counted_end < 0 || layer < counted_end);
-      Vec<D> corner = grid.origin;  // lowest corner of cell c
-      for (Index rest = c, a = 0; a < D; ++a) {
-        corner[a] += static_cast<double>(rest % grid.cells[a]) * grid.h[a];
-        rest /= grid.cells[a];
+      std::array<int, D> cell{};  // the coordinates of the box's cell `local` (x fastest)
+      Index c = 0, stride = 1;    // its flat index in the whole grid
+      for (Index rest = local, a = 0; a < D; ++a) {
+        const Index extent = box.end[a] - box.begin[a];
+        cell[a] = box.begin[a] + static_cast<int>(rest % extent);
+        rest /= extent;
+        c += cell[a] * stride;
+        stride *= grid.cells[a];
       }
+      const double omega = cell_volume(grid, particles, c) / q_count;
+      const bool counted = count_every_cell_ || counted_cells_.contains(cell);
+      Vec<D> corner = grid.origin;  // lowest corner of the cell
+      for (int a = 0; a < D; ++a) corner[a] += static_cast<double>(cell[a]) * grid.h[a];
       for (int q = 0; q < q_count; ++q) {
         const Index k = local * q_count + q;
         point_mass_[k] = 0.0;
@@ -236,10 +246,10 @@ class MlsMapping {
   MlsSpec spec_;
   ParticleBins<D> bins_;
   MlsStatistics stats_;
-  std::pair<Index, Index> counted_nodes_{0, std::numeric_limits<Index>::max()};
-  std::pair<int, int> counted_cell_layers_{0, -1};  // end < 0: to the last layer
-  Index first_cell_ = 0;              // the flat index of the first cell whose points the arrays below hold
-  std::vector<double> point_mass_;    // rho_c Omega at each cell point
+  OwnedNodes counted_nodes_;   // every node unless count_only
+  IndexBox<D> counted_cells_;  // when count_every_cell_ is false
+  bool count_every_cell_ = true;
+  std::vector<double> point_mass_;    // rho_c Omega at each cell point of window_cells (x fastest)
   std::vector<Mat<D>> point_stress_;  // sigma_c Omega
   std::vector<Vec<D>> point_body_;    // rho_c (g + b_c) Omega
 };

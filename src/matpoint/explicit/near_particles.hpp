@@ -3,9 +3,9 @@
 // read particles of other ranks at the nodes they evaluate, and are not particle-to-grid sums in
 // the brick order that the colour hand-off carries:
 // - the MLS reconstructions (Gong 2015 §5.4 and §6.6, explicit/mls_mapping.hpp): a node or cell
-//   point gathers the particles within two cells of it (mls_band: the window and three cell layers
-//   below, two above: the cubic weight's support at the nodes, the quadratic weight's at the cell
-//   points);
+//   point gathers the particles within two cells of it (mls_band: the window's cells and three
+//   cells more below, two above, along every axis: the cubic weight's support at the nodes, the
+//   quadratic weight's at the cell points);
 // - the nodal volumes of the heat contact conductance (explicit/thermal_contact.hpp): sums over
 //   the particles' GIMP domains in storage order (domain_band: the domain stencils' width).
 // Every rank sends each neighbour the particles of its cells in the neighbour's band, with what
@@ -24,6 +24,7 @@
 
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/grid/index_box.hpp"
 #include "matpoint/parallel/bytes.hpp"
 #include "matpoint/parallel/communicator.hpp"
 #include "matpoint/particles/particle_set.hpp"
@@ -45,19 +46,17 @@ struct GhostParticle {
 template <int D>
 class NearParticles {
  public:
-  /// Cell layers [begin, end) along the last axis whose particles the MLS reconstructions of a
-  /// rank storing the node layers [first_node, end_node) read: a node sees the cells within two of
-  /// it (cubic weight), a cell point in the cells next to a stored node the cells within 1.5 cells.
-  static std::pair<int, int> mls_band(const Grid<D>& grid, int first_node, int end_node) {
-    if (first_node >= end_node) return {0, 0};
-    return {std::max(0, first_node - 3), std::min(grid.cells[D - 1], end_node + 2)};
+  /// The cells whose particles the MLS reconstructions of a rank storing the nodes `stored` read:
+  /// a node sees the cells within two of it (cubic weight), a cell point in the cells next to a
+  /// stored node the cells within 1.5 cells.
+  static IndexBox<D> mls_band(const Grid<D>& grid, const IndexBox<D>& stored) {
+    return grown(grid, stored, 3, 2);
   }
-  /// The cell layers whose particles' stencils of `width` nodes per axis (the lowest at most
-  /// width - 1 nodes below the particle's cell, the highest at most width - 1 above its lowest
-  /// node) reach the node layers [first_node, end_node).
-  static std::pair<int, int> domain_band(const Grid<D>& grid, int first_node, int end_node, int width) {
-    if (first_node >= end_node) return {0, 0};
-    return {std::max(0, first_node - width + 1), std::min(grid.cells[D - 1], end_node + width - 1)};
+  /// The cells whose particles' stencils of `width` nodes per axis (the lowest at most width - 1
+  /// nodes below the particle's cell, the highest at most width - 1 above its lowest node) reach
+  /// the nodes `stored`.
+  static IndexBox<D> domain_band(const Grid<D>& grid, const IndexBox<D>& stored, int width) {
+    return grown(grid, stored, width - 1, width - 1);
   }
 
   /// Gathers this rank's particles (`own`, with their sort keys `keys` and body forces `body`, or
@@ -66,19 +65,18 @@ class NearParticles {
   template <class BandOf>
   void gather(const Communicator& comm, const Grid<D>& grid, const ParticleSet<D>& own,
               const std::vector<Index>& keys, const std::vector<Vec<D>>* body, BandOf&& band_of) {
-    constexpr int kCut = D - 1;
     const int me = comm.rank();
-    const std::pair<int, int> mine = band_of(me);
-    std::vector<std::pair<int, std::pair<int, int>>> neighbours;  // rank, band: those that read my particles
+    const IndexBox<D> mine = band_of(me);
+    std::vector<std::pair<int, IndexBox<D>>> neighbours;  // rank, band: those that read my particles
     for (int r = 0; r < comm.size(); ++r) {
-      const auto theirs = band_of(r);
-      if (r != me && theirs.first < theirs.second) neighbours.push_back({r, theirs});
+      const IndexBox<D> theirs = band_of(r);
+      if (r != me && !theirs.empty()) neighbours.push_back({r, theirs});
     }
     std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
     for (std::size_t p = 0; p < own.size(); ++p) {
-      const int layer = grid.cell_coordinate(own.x[p][kCut], kCut);
+      const auto cell = grid.cell_coords(own.x[p]);
       for (const auto& [r, theirs] : neighbours)
-        if (layer >= theirs.first && layer < theirs.second)
+        if (theirs.contains(cell))
           bytes::append(out[static_cast<std::size_t>(r)], ghost_of(own, keys, body, p));
     }
     std::vector<GhostParticle<D>> ghosts;
@@ -94,10 +92,21 @@ class NearParticles {
   [[nodiscard]] const ParticleSet<D>& particles() const { return near_; }
   /// Their body forces (null when gather had none).
   [[nodiscard]] const std::vector<Vec<D>>* body() const { return has_body_ ? &near_body_ : nullptr; }
-  /// The cell layers where they lie.
-  [[nodiscard]] std::pair<int, int> band() const { return band_; }
+  /// The cells where they lie.
+  [[nodiscard]] const IndexBox<D>& band() const { return band_; }
 
  private:
+  /// The cells within `below` cells below and `above` cells above the nodes `stored` (of the
+  /// grid's cells; empty for no stored node).
+  static IndexBox<D> grown(const Grid<D>& grid, const IndexBox<D>& stored, int below, int above) {
+    if (stored.empty()) return {};
+    IndexBox<D> out;
+    for (int a = 0; a < D; ++a)
+      out.begin[a] = std::max(0, stored.begin[a] - below),
+      out.end[a] = std::min(grid.cells[a], stored.end[a] + above);
+    return out;
+  }
+
   static GhostParticle<D> ghost_of(const ParticleSet<D>& own, const std::vector<Index>& keys,
                                    const std::vector<Vec<D>>* body, std::size_t p) {
     GhostParticle<D> g;
@@ -139,7 +148,7 @@ class NearParticles {
   ParticleSet<D> near_;
   std::vector<Vec<D>> near_body_;
   bool has_body_ = false;
-  std::pair<int, int> band_{0, 0};
+  IndexBox<D> band_;
 };
 
 }  // namespace matpoint

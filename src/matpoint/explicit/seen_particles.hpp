@@ -5,7 +5,7 @@
 //
 // Each rank lists, per contact node, its own particles that see it (SeenParticle: what the fit and
 // the gap read of a particle, and its serial storage order (key, id)); for the nodes that another
-// rank stores too (SharedNodeLayers, from the two ranks' grid windows) it sends that list to the
+// rank stores too (SharedNodes, from the two ranks' grid windows) it sends that list to the
 // other rank, and appends what it receives. Sorted by (key, id), the merged list is the serial
 // run's: the serial run stores its particles in (brick-major cell at the last sort, id) order, and
 // a decomposed run carries each particle's key with it (parallel/particle_migration.hpp).
@@ -18,6 +18,7 @@
 
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/grid/index_box.hpp"
 #include "matpoint/parallel/bytes.hpp"
 #include "matpoint/parallel/communicator.hpp"
 
@@ -43,10 +44,11 @@ struct SeenParticle {
   }
 };
 
-/// The node layers [begin, end) along `axis` that this rank and `rank` both store.
-struct SharedNodeLayers {
+/// The nodes that this rank and `rank` both store.
+template <int D>
+struct SharedNodes {
   int rank = 0;
-  int begin = 0, end = 0;
+  IndexBox<D> nodes;
 };
 
 /// Sends, for every listed node that another rank stores too, this rank's seen particles to it,
@@ -54,16 +56,16 @@ struct SharedNodeLayers {
 /// `nodes[k]`: the grid node (of this rank's window) of list k; `slot_of_node`: its inverse (-1 for
 /// a node without a list).
 template <int D>
-void exchange_seen_particles(const Communicator& comm, const Grid<D>& grid, int axis,
-                             const std::vector<SharedNodeLayers>& shared, const std::vector<Index>& nodes,
+void exchange_seen_particles(const Communicator& comm, const Grid<D>& grid,
+                             const std::vector<SharedNodes<D>>& shared, const std::vector<Index>& nodes,
                              const std::vector<int>& slot_of_node,
                              std::vector<std::vector<SeenParticle<D>>>& seen) {
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     if (seen[k].empty()) continue;
     const std::array<int, D> ijk = grid.node_coords(nodes[k]);
-    for (const SharedNodeLayers& s : shared) {
-      if (ijk[axis] < s.begin || ijk[axis] >= s.end) continue;
+    for (const SharedNodes<D>& s : shared) {
+      if (!s.nodes.contains(ijk)) continue;
       auto& message = out[static_cast<std::size_t>(s.rank)];
       bytes::append(message, ijk);
       bytes::append(message, seen[k].size());

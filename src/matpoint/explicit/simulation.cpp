@@ -8,7 +8,7 @@
 #include "matpoint/core/errors.hpp"
 #include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/material/wave_speed.hpp"
-#include "matpoint/parallel/slab_partition.hpp"
+#include "matpoint/parallel/box_partition.hpp"
 #include "matpoint/particles/generators.hpp"
 #include "matpoint/shape/tensor_bases.hpp"
 
@@ -60,20 +60,19 @@ std::vector<InputIssue> overlapping_bodies(const Spec& spec, const ParticleSet<D
 }
 
 /// Generates every body's particles: all of them in a serial run. A rank of a decomposed run
-/// (docs/scale-out.md §5) stores only the particles of its slab, so that no rank ever holds the
-/// whole set: the bodies are generated twice, once to count the particles per brick layer, from
-/// which every rank computes the same balanced cut (sim.first_layers, where the stepper starts),
+/// (docs/scale-out.md §5) stores only the particles of its box, so that no rank ever holds the
+/// whole set: the bodies are generated twice, once to count the particles per brick, from which
+/// every rank computes the same balanced boxes (sim.partition, where the stepper starts),
 /// and once to keep its own; the ids are the generation order on any rank count. Returns the
 /// bodies that generated no particle at all.
 template <int D>
 std::vector<InputIssue> generate_particles(const Spec& spec, Simulation<D>& sim) {
   KeepParticle<D> keep;
   if (sim.comm.distributed()) {
-    constexpr int kCut = SlabPartition<D>::kAxis;
-    std::vector<std::size_t> count(static_cast<std::size_t>(BrickSchedule<D>::bricks_along(sim.grid, kCut)),
-                                   0);
+    const auto bricks = BoxPartition<D>::whole(sim.grid);  // the brick numbering of the counts
+    std::vector<std::size_t> count(bricks.brick_count(), 0);
     const KeepParticle<D> count_only = [&](const Vec<D>& x) {
-      ++count[static_cast<std::size_t>(SlabPartition<D>::layer_of(sim.grid.cell_coords(x)[kCut]))];
+      ++count[static_cast<std::size_t>(bricks.brick_of_cell(sim.grid.cell_coords(x)))];
       return false;
     };
     ParticleSet<D> none;
@@ -81,8 +80,8 @@ std::vector<InputIssue> generate_particles(const Spec& spec, Simulation<D>& sim)
       const auto& body = spec.bodies[b];
       generate_body<D>(body, static_cast<int>(b), spec.materials[body.material], sim.grid, none, count_only);
     }
-    const auto partition = SlabPartition<D>::balanced(sim.grid, count, sim.comm.size());
-    sim.first_layers = partition.first_layers();
+    const auto partition = BoxPartition<D>::balanced(sim.grid, count, sim.comm.size());
+    sim.partition = partition.ints();
     keep = [partition, grid = sim.grid, rank = sim.comm.rank()](const Vec<D>& x) {
       return partition.owner_of_cell(grid.cell_coords(x)) == rank;
     };

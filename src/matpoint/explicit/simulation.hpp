@@ -8,6 +8,7 @@
 #include "matpoint/explicit/contact.hpp"
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/grid/grid_fields.hpp"
+#include "matpoint/grid/owned_nodes.hpp"
 #include "matpoint/grid/velocity_conditions.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/material/material.hpp"
@@ -63,20 +64,18 @@ struct Simulation {
   // mass-weighted mapping, not with the MLS velocity of IMPM (Gong 2015 extraction A19).
   Vec<D> grid_momentum_difference = Vec<D>::Zero();
 
-  // A decomposed explicit run (issue 23, docs/scale-out.md): the ranks, and the flat indices
-  // [owned_nodes_begin, owned_nodes_end) of the grid nodes this rank owns. Each rank's `grid`
+  // A decomposed explicit run (issue 23, docs/scale-out.md): the ranks, and the grid nodes this
+  // rank owns (of its window). Each rank's `grid`
   // stores a window of the nodes, those its particles reach (Grid::window, fitted by the
   // ExplicitStepper); sums over nodes that are reported (history, condition impulses, grid modes)
   // count only the owned ones, so that a node two ranks store counts once. Serial: one rank that
   // stores and owns every node.
   Communicator comm;
-  Index owned_nodes_begin = 0, owned_nodes_end = std::numeric_limits<Index>::max();
-  // The slab cut the set-up generated this rank's particles for (SlabPartition::first_layers:
-  // rank r's first brick layer, then the layer count); the stepper starts from it. Empty: serial.
-  std::vector<int> first_layers;
-  [[nodiscard]] bool owns_node(Index node) const {
-    return node >= owned_nodes_begin && node < owned_nodes_end;
-  }
+  OwnedNodes owned_nodes;
+  // The boxes the set-up generated this rank's particles for (BoxPartition::ints: every rank's
+  // box of bricks); the stepper starts from them. Empty: serial.
+  std::vector<int> partition;
+  [[nodiscard]] bool owns_node(Index node) const { return owned_nodes.contains(node); }
 };
 
 /// Grid ghost layers needed by a basis.

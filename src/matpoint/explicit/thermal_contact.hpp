@@ -145,7 +145,7 @@ class ThermalContactCoupling {
   /// A decomposed run (docs/scale-out.md §16): the particles whose domains reach this rank's
   /// window, its own and its neighbours' in the serial order (explicit/near_particles.hpp), with
   /// each one's field offset (field x nodes per field of the window), and the band grid (a window
-  /// of the whole grid along the last axis) where all their domain stencils lie. Null: serial.
+  /// of the whole grid) where all their domain stencils lie. Null: serial.
   struct NearDomains {
     const ParticleSet<D>* particles = nullptr;
     std::vector<Index> offset;
@@ -294,9 +294,8 @@ class ThermalContactCoupling {
   /// The sums of volumes() over the particles `ps` in their order, their domain stencils evaluated
   /// on `domains_grid` (this rank's `grid` itself, or a decomposed run's band grid that holds the
   /// near particles' stencils), into the nodes of `grid` (node_count over every field; `offset(p)`:
-  /// particle p's field offset). The nodes of the band outside this rank's window are left out.
-  /// Windows differ only along the last axis, the slowest, so a band node's index less the layers
-  /// between the two windows' first nodes is its window index.
+  /// particle p's field offset). The nodes of the band outside this rank's window are left out;
+  /// a band node's window index is found by its coordinates.
   template <class Kernel, class Offset>
   void add_domain_volumes(const Grid<D>& grid, const Grid<D>& domains_grid, const ParticleSet<D>& ps,
                           Offset&& offset) {
@@ -304,12 +303,11 @@ class ThermalContactCoupling {
     domains.evaluate(domains_grid, ps);
     volume_.assign(static_cast<std::size_t>(grid.node_count), 0.0);
     gradient_.assign(static_cast<std::size_t>(grid.node_count), Vec<D>::Zero());
-    constexpr int kCut = D - 1;
-    const Index shift = static_cast<Index>(grid.first[kCut] - domains_grid.first[kCut]) * grid.stride[kCut];
+    const bool band = &domains_grid != &grid;
     for (std::size_t p = 0; p < ps.size(); ++p) {
       const double V = ps.volume(p);
       domains.for_each_node(domains_grid, p, [&](Index node, double N, const Vec<D>& dN) {
-        node -= shift;
+        if (band) node = domains_grid.node_index_in(grid, node);
         if (node < 0 || node >= field_nodes_) return;  // not in this rank's window
         node += offset(p);                             // on the particle's field
         volume_[node] += V * N;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "matpoint/core/types.hpp"
+#include "matpoint/grid/index_box.hpp"
 
 namespace matpoint {
 
@@ -39,16 +40,23 @@ struct Grid {
     number_nodes();
   }
 
-  /// The same grid storing only the node coordinates [begin, end) along `axis` (clamped to the
-  /// grid's nodes, ghosts included); the other axes keep their window.
-  [[nodiscard]] Grid window(int axis, int begin, int end) const {
+  /// The same grid storing only the node coordinates in `box` (clamped to the grid's nodes, ghosts
+  /// included): a rank's window.
+  [[nodiscard]] Grid window(const IndexBox<D>& box) const {
     Grid out = *this;
-    begin = std::max(begin, -ghost);
-    end = std::min(end, cells[axis] + 1 + ghost);
-    out.first[axis] = begin;
-    out.nodes[axis] = std::max(0, end - begin);
+    for (int a = 0; a < D; ++a) {
+      const int begin = std::max(box.begin[a], -ghost), end = std::min(box.end[a], cells[a] + 1 + ghost);
+      out.first[a] = begin;
+      out.nodes[a] = std::max(0, end - begin);
+    }
     out.number_nodes();
     return out;
+  }
+  /// The node coordinates this grid stores.
+  [[nodiscard]] IndexBox<D> stored_nodes() const {
+    IndexBox<D> box;
+    for (int a = 0; a < D; ++a) box.begin[a] = first[a], box.end[a] = first[a] + nodes[a];
+    return box;
   }
   /// True when the node of coordinates ijk is stored.
   [[nodiscard]] bool stores(const std::array<int, D>& ijk) const {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/grid/owned_nodes.hpp"
 #include "matpoint/io/spec.hpp"
 #include "matpoint/shape/kernels.hpp"
 
@@ -48,15 +49,15 @@ class ThermalConditions {
 
   [[nodiscard]] bool empty() const { return fixed_.empty() && flux_.empty(); }
 
-  /// A decomposed run: the heat is added only for the grid nodes [begin, end) (of `field_nodes`,
-  /// in every field) this rank owns, so that a node two ranks store counts once when the ranks'
-  /// heats are added (the temperatures and flows are set on every node).
-  void count_only(Index begin, Index end, Index field_nodes) {
-    counted_begin_ = begin, counted_end_ = end, field_nodes_ = field_nodes;
+  /// A decomposed run: the heat is added only for the grid nodes `owned` (of `field_nodes`, in
+  /// every field) this rank owns, so that a node two ranks store counts once when the ranks' heats
+  /// are added (the temperatures and flows are set on every node).
+  void count_only(OwnedNodes owned, Index field_nodes) {
+    counted_ = std::move(owned), field_nodes_ = field_nodes;
   }
   [[nodiscard]] bool counts(Index node) const {
     if (field_nodes_ > 0) node %= field_nodes_;
-    return node >= counted_begin_ && node < counted_end_;
+    return counted_.contains(node);
   }
 
   /// Sets the fixed temperatures; with `capacity` and `heat`, adds the heat that took,
@@ -143,7 +144,8 @@ class ThermalConditions {
 
   std::array<std::vector<double>, D> integrals_;  // per axis: int N_j dxi by node j
   std::vector<Entry> fixed_, flux_;
-  Index counted_begin_ = 0, counted_end_ = std::numeric_limits<Index>::max(), field_nodes_ = 0;
+  OwnedNodes counted_;  // every node unless count_only
+  Index field_nodes_ = 0;
 };
 
 }  // namespace matpoint

@@ -8,6 +8,7 @@
 
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/grid/owned_nodes.hpp"
 #include "matpoint/io/spec.hpp"
 
 namespace matpoint {
@@ -51,14 +52,13 @@ class VelocityConditions {
     for (const auto& e : wall_entries_) zero(e.node, e.axis, e.value);
   }
 
-  /// A decomposed run: impulse and work are added only for the nodes [begin, end) this rank owns,
-  /// so that a node two ranks store counts once when the ranks' sums are added (the velocities
-  /// are set on every node).
-  /// [begin, end) are grid nodes (of N): a multi-field run counts every field's copy of them.
-  void count_only(Index begin, Index end) { counted_begin_ = begin, counted_end_ = end; }
+  /// A decomposed run: impulse and work are added only for the nodes this rank owns, so that a
+  /// node two ranks store counts once when the ranks' sums are added (the velocities are set on
+  /// every node). `owned` names grid nodes (of N): a multi-field run counts every field's copy.
+  void count_only(OwnedNodes owned) { counted_ = std::move(owned); }
   [[nodiscard]] bool counts(Index node) const {
     if (fields_ > 1) node %= grid_.node_count;
-    return node >= counted_begin_ && node < counted_end_;
+    return counted_.contains(node);
   }
 
   [[nodiscard]] bool has_walls() const { return !walls_.empty(); }
@@ -94,7 +94,7 @@ class VelocityConditions {
   [[nodiscard]] std::size_t size() const { return entries_.size() + wall_entries_.size(); }
 
  private:
-  Index counted_begin_ = 0, counted_end_ = std::numeric_limits<Index>::max();
+  OwnedNodes counted_;  // every node unless count_only
   struct Entry {
     Index node;
     int axis;

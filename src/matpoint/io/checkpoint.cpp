@@ -1,6 +1,7 @@
 #include "matpoint/io/checkpoint.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <iomanip>
 #include <limits>
@@ -15,7 +16,7 @@
 #include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/io/atomic_file.hpp"
 #include "matpoint/io/hdf5_file.hpp"
-#include "matpoint/parallel/slab_partition.hpp"
+#include "matpoint/parallel/box_partition.hpp"
 
 namespace matpoint {
 
@@ -416,13 +417,14 @@ void write_manifest(Hdf5Writer& w, const Simulation<D>& sim, const RunCounters& 
   write_run(w, run);
   write_history(w, history);
   const int ranks = sim.comm.size();
-  if (run.partition.size() != static_cast<std::size_t>(ranks) + 1)
+  if (run.partition.size() != static_cast<std::size_t>(2 * D * ranks))
     throw std::logic_error("checkpoint: a partition of " + std::to_string(run.partition.size()) +
                            " entries for " + std::to_string(ranks) + " ranks");
   std::vector<std::string> pieces;
   for (int r = 0; r < ranks; ++r) pieces.push_back(checkpoint_piece_name(sim.step, r));
   w.write("parallel/ranks", std::int64_t{ranks});
-  w.write("parallel/partition", convert<std::int32_t>(run.partition), {h(run.partition.size())});
+  w.write("parallel/boxes", convert<std::int32_t>(run.partition),
+          {h(static_cast<std::size_t>(ranks)), h(static_cast<std::size_t>(2 * D))});
   w.write("parallel/pieces", joined(pieces));
 }
 
@@ -623,6 +625,38 @@ void remove_unnamed_pieces(const std::filesystem::path& file, const std::filesys
   }
 }
 
+/// The ranks' boxes of bricks in a decomposed run's manifest (BoxPartition::ints), checked to be a
+/// partition of the grid's bricks. A manifest written before the boxes (up to 2026-12-07) holds
+/// the slab cut along the last axis (`parallel/partition`: rank r's first brick layer, then the
+/// layer count), read as the boxes of those slabs.
+template <int D>
+std::vector<int> read_boxes(const Hdf5Reader& manifest, const Grid<D>& grid, int ranks) {
+  const auto P = static_cast<std::size_t>(ranks);
+  std::vector<int> boxes;
+  if (manifest.has("parallel/boxes")) {
+    boxes = convert<int>(manifest.int32s("parallel/boxes", {h(P), h(2 * D)}));
+  } else {
+    const auto first = convert<int>(manifest.int32s("parallel/partition", {h(P + 1)}));
+    const int layers = BrickSchedule<D>::bricks_along(grid, D - 1);
+    if (first.front() != 0 || first.back() != layers || !std::is_sorted(first.begin(), first.end()))
+      throw Hdf5Error("dataset parallel/partition is not a cut of the grid's " + std::to_string(layers) +
+                      " brick layers");
+    for (std::size_t r = 0; r < P; ++r) {
+      std::array<int, 2 * D> box{};  // begin per axis, then end per axis
+      for (int a = 0; a < D; ++a) box[D + a] = BrickSchedule<D>::bricks_along(grid, a);
+      box[D - 1] = first[r], box[2 * D - 1] = first[r + 1];
+      if (first[r] == first[r + 1]) box.fill(0);  // a rank without cells
+      boxes.insert(boxes.end(), box.begin(), box.end());
+    }
+  }
+  try {
+    return BoxPartition<D>::from_ints(grid, boxes).ints();
+  } catch (const std::invalid_argument& e) {
+    throw Hdf5Error(std::string("dataset parallel/boxes is not a partition of the grid's bricks: ") +
+                    e.what());
+  }
+}
+
 /// Rank r's part of a decomposed run's checkpoint: its piece, named by the manifest `r`.
 template <int D>
 void read_piece(const Hdf5Reader& manifest, const std::filesystem::path& file, const json& input,
@@ -632,13 +666,7 @@ void read_piece(const Hdf5Reader& manifest, const std::filesystem::path& file, c
   if (pieces.size() != static_cast<std::size_t>(ranks))
     throw Hdf5Error("dataset parallel/pieces names " + std::to_string(pieces.size()) + " pieces for " +
                     std::to_string(ranks) + " ranks");
-  auto partition =
-      convert<int>(manifest.int32s("parallel/partition", {h(static_cast<std::size_t>(ranks) + 1)}));
-  const int layers = BrickSchedule<D>::bricks_along(sim.grid, D - 1);
-  if (partition.front() != 0 || partition.back() != layers ||
-      !std::is_sorted(partition.begin(), partition.end()))
-    throw Hdf5Error("dataset parallel/partition is not a cut of the grid's " + std::to_string(layers) +
-                    " brick layers");
+  auto partition = read_boxes<D>(manifest, sim.grid, ranks);
   const long step = manifest.integer("simulation/step");
   const std::filesystem::path file_of_piece = folder_of(file) / pieces[static_cast<std::size_t>(rank)];
   try {
@@ -752,7 +780,7 @@ void read_redistributed(const Hdf5Reader& manifest, const std::filesystem::path&
   // The partition of the present particles, and this rank's of them in (key, id) order.
   std::vector<std::array<int, D>> cells(all.size());
   for (std::size_t p = 0; p < all.size(); ++p) cells[p] = sim.grid.cell_coords(all.x[p]);
-  const auto partition = SlabPartition<D>::balanced(sim.grid, cells, sim.comm.size());
+  const auto partition = BoxPartition<D>::balanced(sim.grid, cells, sim.comm.size());
   std::vector<std::size_t> mine;
   for (std::size_t p = 0; p < all.size(); ++p)
     if (partition.owner_of_cell(cells[p]) == sim.comm.rank()) mine.push_back(p);
@@ -763,7 +791,7 @@ void read_redistributed(const Hdf5Reader& manifest, const std::filesystem::path&
   ps.state_stride = all.state_stride, ps.track_corners = all.track_corners;
   for_each_array(ps, [](const char*, auto& array, std::size_t) { array.clear(); });
   append_particles(ps, all, mine);
-  run.partition = partition.first_layers();
+  run.partition = partition.ints();
   run.sort_keys.clear();
   for (const std::size_t p : mine) run.sort_keys.push_back(keys[p]);
   run.sorted_prefix = mine.size();

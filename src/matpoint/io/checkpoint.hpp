@@ -45,7 +45,7 @@ struct RunCounters {
   // The solver's own state (the implicit solver's particle accelerations, host elements and
   // totals): named arrays, stored as datasets solver/NAME.
   std::map<std::string, std::vector<double>> solver_state;
-  // A decomposed run (docs/scale-out.md §9): the slab partition (SlabPartition::first_layers, the
+  // A decomposed run (docs/scale-out.md §9): the ranks' boxes of bricks (BoxPartition::ints, the
   // same on every rank; empty on one rank) and this rank's migration state (ParticleMigration::keys
   // and sorted_prefix), with which the restarted run orders its particles as the uninterrupted one.
   std::vector<int> partition;

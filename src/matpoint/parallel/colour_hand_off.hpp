@@ -23,8 +23,8 @@
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/parallel/box_partition.hpp"
 #include "matpoint/parallel/communicator.hpp"
-#include "matpoint/parallel/slab_partition.hpp"
 #include "matpoint/parallel/traffic.hpp"
 
 namespace matpoint {
@@ -32,7 +32,7 @@ namespace matpoint {
 template <int D>
 class ColourHandOff final : public BrickBoundary {
  public:
-  ColourHandOff(const Grid<D>& grid, const SlabPartition<D>& partition, const Communicator& comm)
+  ColourHandOff(const Grid<D>& grid, const BoxPartition<D>& partition, const Communicator& comm)
       : grid_(grid), partition_(partition), comm_(comm) {}
 
   /// The largest reach of any rank, never less than an earlier step's (so that the lists are
@@ -126,61 +126,41 @@ class ColourHandOff final : public BrickBoundary {
     int colours = 1;
     for (int a = 0; a < D; ++a) colours *= m;
     peers_.assign(static_cast<std::size_t>(colours), {});
-    constexpr int kCut = SlabPartition<D>::kAxis;
-    const int me = comm_.rank();
+    const int me = comm_.rank(), ghost = grid_.ghost;
     for (int colour = 0; colour < colours; ++colour) {
       std::array<int, D> c{};
       for (int a = 0, rest = colour; a < D; ++a, rest /= m) c[a] = rest % m;
-      // Per axis other than the cut, the covering brick of every node coordinate (or -1).
+      // Per axis, the covering brick of every node coordinate n (at n + ghost), or -1.
       std::array<std::vector<int>, D> cover;
       for (int a = 0; a < D; ++a) {
-        if (a == kCut) continue;
-        cover[a].resize(static_cast<std::size_t>(grid_.cells[a]) + 1);
-        for (int n = 0; n <= grid_.cells[a]; ++n)
-          cover[a][static_cast<std::size_t>(n)] = covering_brick(a, n, c[a], m);
+        cover[a].resize(static_cast<std::size_t>(grid_.cells[a] + 1 + 2 * ghost));
+        for (int n = -ghost; n <= grid_.cells[a] + ghost; ++n)
+          cover[a][static_cast<std::size_t>(n + ghost)] = covering_brick(a, n, c[a], m);
       }
       for (int r = 0; r < comm_.size(); ++r) {
         if (r == me) continue;
-        const auto [shared_begin, shared_end] = partition_.shared_nodes_of(me, r, below, above);
         Peer peer{r, {}, {}};
-        for (int layer = shared_begin; layer < shared_end; ++layer) {
-          const int k = covering_brick(kCut, layer, c[kCut], m);
-          if (k < 0) continue;
-          const int owner = partition_.owner_of_layer(k);
-          if (owner != me && owner != r) continue;
-          auto& list = owner == me ? peer.send : peer.receive;
-          add_layer_nodes(layer, cover, list);
-        }
+        // Both ranks walk the nodes they share in the same (ascending) order, so the lists match.
+        partition_.shared_nodes_of(me, r, below, above).for_each([&](const std::array<int, D>& node) {
+          std::array<int, D> brick{};
+          for (int a = 0; a < D; ++a) {
+            brick[a] = cover[a][static_cast<std::size_t>(node[a] + ghost)];
+            if (brick[a] < 0) return;  // no brick of this colour reaches the node
+          }
+          const int owner = partition_.owner_of_brick(partition_.brick_index(brick));
+          if (owner == me)
+            peer.send.push_back(grid_.node_index(node));
+          else if (owner == r)
+            peer.receive.push_back(grid_.node_index(node));
+        });
         if (!peer.send.empty() || !peer.receive.empty())
           peers_[static_cast<std::size_t>(colour)].push_back(std::move(peer));
       }
     }
   }
 
-  /// Appends, in ascending flat index, the nodes of node layer `layer` (along the cut axis) that a
-  /// brick of the colour covers along every other axis.
-  void add_layer_nodes(int layer, const std::array<std::vector<int>, D>& cover,
-                       std::vector<Index>& list) const {
-    constexpr int kCut = SlabPartition<D>::kAxis;
-    std::array<int, D> ijk{};
-    ijk[kCut] = layer;
-    if constexpr (D == 1) {
-      list.push_back(grid_.node_index(ijk));
-    } else if constexpr (D == 2) {
-      for (int i = 0; i <= grid_.cells[0]; ++i)
-        if (cover[0][static_cast<std::size_t>(i)] >= 0) ijk[0] = i, list.push_back(grid_.node_index(ijk));
-    } else {
-      for (int j = 0; j <= grid_.cells[1]; ++j) {
-        if (cover[1][static_cast<std::size_t>(j)] < 0) continue;
-        ijk[1] = j;
-        for (int i = 0; i <= grid_.cells[0]; ++i)
-          if (cover[0][static_cast<std::size_t>(i)] >= 0) ijk[0] = i, list.push_back(grid_.node_index(ijk));
-      }
-    }
-  }
-
   const Grid<D>& grid_;
-  const SlabPartition<D>& partition_;
+  const BoxPartition<D>& partition_;
   Communicator comm_;
   int below_ = -1, above_ = -1;
   std::vector<std::vector<Peer>> peers_;  // by colour

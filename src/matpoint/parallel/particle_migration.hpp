@@ -1,6 +1,6 @@
 // Particles between the ranks of a decomposed explicit run (issue 23; docs/scale-out.md §5, §6).
 //
-// A particle lives on the rank that owns its cell's brick layer (parallel/slab_partition.hpp). At
+// A particle lives on the rank that owns its cell's brick (parallel/box_partition.hpp). At
 // the end of every step the particles that moved into another rank's cells are packed (every array
 // of for_each_array, so none is left behind), sent, and appended by the receivers; the departed are
 // removed by a stable compaction. The scatter must visit a brick's particles in the order the
@@ -23,7 +23,7 @@
 #include "matpoint/grid/grid.hpp"
 #include "matpoint/parallel/bytes.hpp"
 #include "matpoint/parallel/communicator.hpp"
-#include "matpoint/parallel/slab_partition.hpp"
+#include "matpoint/parallel/box_partition.hpp"
 #include "matpoint/parallel/traffic.hpp"
 #include "matpoint/particles/particle_set.hpp"
 
@@ -32,7 +32,7 @@ namespace matpoint {
 template <int D>
 class ParticleMigration {
  public:
-  ParticleMigration(const Grid<D>& grid, const SlabPartition<D>& partition, const Communicator& comm)
+  ParticleMigration(const Grid<D>& grid, const BoxPartition<D>& partition, const Communicator& comm)
       : grid_(grid), partition_(partition), comm_(comm) {}
 
   /// The set-up's particles of this rank (build_simulation generated only those, sorted by cell):
@@ -62,11 +62,9 @@ class ParticleMigration {
     const int P = comm_.size(), me = comm_.rank();
     std::vector<std::vector<std::size_t>> leaving(static_cast<std::size_t>(P));
     std::vector<char> keep(ps.size(), 1);
-    constexpr int kCut = SlabPartition<D>::kAxis;  // the owner depends on the cell layer along it only
     std::size_t first_departure = ps.size();
     for (std::size_t p = 0; p < ps.size(); ++p) {
-      const int owner =
-          partition_.owner_of_layer(SlabPartition<D>::layer_of(grid_.cell_coordinate(ps.x[p][kCut], kCut)));
+      const int owner = partition_.owner_of_cell(grid_.cell_coords(ps.x[p]));
       if (owner == me) continue;
       keep[p] = 0;
       first_departure = std::min(first_departure, p);
@@ -155,7 +153,7 @@ class ParticleMigration {
   }
 
   const Grid<D>& grid_;
-  const SlabPartition<D>& partition_;
+  const BoxPartition<D>& partition_;
   Communicator comm_;
   std::vector<Index> key_;         // brick-major cell at the last sort (or on the sender's side)
   std::size_t sorted_prefix_ = 0;  // particles [0, sorted_prefix_) are in (key, id) order

@@ -141,7 +141,7 @@ HistorySample history_sample(const Simulation<D>& sim, int body_count, const std
   s.grid_momentum_difference = pad<D>(grid_momentum_difference);
   const GridModes modes =
       measure_grid_modes(sim.grid, sim.fields.mass, sim.fields.velocity_new,
-                         NodeOwnership{sim.comm, sim.owned_nodes_begin, sim.owned_nodes_end});
+                         NodeOwnership{sim.comm, sim.owned_nodes});
   s.checkerboard_velocity = modes.checkerboard_velocity;
   s.grid_rms_velocity = modes.rms_velocity;
   s.hourglass_energy = modes.hourglass_energy;

@@ -303,7 +303,7 @@ void SpecReader::read_energy_guard(const Value& growth, SolverSpec& out) {
 }
 
 /// solver.rebalance: "off", or {"imbalance": a number > 1, "min_steps": an integer >= 1}
-/// (parallel/slab_partition.hpp; checked at every re-sort, docs/scale-out.md §10).
+/// (parallel/box_partition.hpp; checked at every re-sort, docs/scale-out.md §10).
 void SpecReader::read_rebalance(const Value& v, SolverSpec& out) {
   if (!v.present()) return;
   if (v.get().is_string() && v.get().get_ref<const std::string&>() == "off") {
