@@ -40,7 +40,9 @@ namespace fs = std::filesystem;
 // Sulsky's two disks on the grid of test_decomposed_run.cpp (h = 0.02, 2528 particles, 7 brick
 // layers along y), 600 steps: the lower disk's top crosses y = 0.48 at t = 0.3 (a slab boundary on
 // 2 ranks), so particles arrive on the upper rank between the re-sorts, ahead of its own in the
-// (key, id) order. MUSL, FLIP, quadratic B-splines; a checkpoint every 40 steps, outputs every 50.
+// (key, id) order. MUSL, FLIP, quadratic B-splines; a checkpoint every 40 steps, outputs every 50;
+// re-partitioned at the slightest imbalance every 10 steps (on 4 ranks the boxes follow the disks),
+// so that a restart must continue the re-partitions where the uninterrupted run makes them.
 const std::string kTwoDisks = R"({
   "grid": { "dim": 2, "min": [0, 0], "max": [1, 1], "cell_size": 0.02 },
   "materials": [ { "name": "elastic", "model": "linear_elastic", "density": 1000, "E": 1000, "nu": 0.3 } ],
@@ -50,7 +52,7 @@ const std::string kTwoDisks = R"({
     { "name": "upper-right", "material": "elastic", "shape": { "type": "disk", "center": [0.75, 0.75], "radius": 0.2 },
       "particles_per_cell": 2, "velocity": [-0.1, -0.1] } ],
   "solver": { "scheme": "musl", "transfer": "flip", "basis": "bspline2", "dt": 0.001, "end_time": 3.0,
-              "max_steps": 600 },
+              "max_steps": 600, "rebalance": { "imbalance": 1.0001, "min_steps": 10 } },
   "output": { "every_steps": 50, "plots": false, "checkpoint": { "every_steps": 40 } }
 })";
 
@@ -130,6 +132,12 @@ void expect_same_run(const fs::path& whole, const fs::path& parts, const RunResu
   ASSERT_EQ(rest.exit_code, 0) << rest.message;
   EXPECT_EQ(rest.summary["steps"], reference.summary["steps"]);
   EXPECT_EQ(rest.summary["outputs"], reference.summary["outputs"]);
+  if (comm.distributed()) {  // solver.rebalance's count and steps continue (run/repartitions)
+    EXPECT_EQ(rest.summary["parallel"]["repartitions"], reference.summary["parallel"]["repartitions"]);
+    if (comm.rank() == 0)
+      std::printf("%s: %ld re-partitions\n", what.c_str(),
+                  reference.summary["parallel"]["repartitions"].get<long>());
+  }
   const long steps = reference.summary["steps"].get<long>();
   const long differing = differing_values(whole, parts, steps, comm);
   EXPECT_EQ(differing, 0) << what << ": values that differ from the uninterrupted run's";

@@ -118,6 +118,8 @@ class ExplicitSolver {
     counters.partition = state.partition;
     counters.sort_keys.assign(state.sort_keys.begin(), state.sort_keys.end());
     counters.sorted_prefix = state.sorted_prefix;
+    counters.repartitions = state.repartitions;
+    counters.partitioned_at = state.partitioned_at;
   }
   void restore(const RunCounters& c) {
     sim_.particles.recorded_wave_speed = -1.0;  // F and state were read from the checkpoint
@@ -126,7 +128,9 @@ class ExplicitSolver {
                       {c.fmpm_loops, c.fmpm_passes, c.fmpm_seconds},
                       c.partition,
                       std::vector<Index>(c.sort_keys.begin(), c.sort_keys.end()),
-                      c.sorted_prefix});
+                      c.sorted_prefix,
+                      c.repartitions,
+                      c.partitioned_at});
   }
 
   /// Coupled heat (HeatSpec) adds its columns (docs/output.md): the largest and the mean particle

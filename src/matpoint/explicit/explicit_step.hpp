@@ -166,6 +166,7 @@ class ExplicitStepper {
     std::vector<int> partition;
     std::vector<Index> sort_keys;
     std::size_t sorted_prefix = 0;
+    long repartitions = 0, partitioned_at = 0;  // solver.rebalance: how many, and the last one's step
   };
   [[nodiscard]] State state() const {
     State out{next_fmpm_time_, total_mass_, fmpm_.statistics(), {}, {}, 0};
@@ -173,6 +174,8 @@ class ExplicitStepper {
       out.partition = ranks_->partition.ints();
       out.sort_keys = ranks_->migration.keys();
       out.sorted_prefix = ranks_->migration.sorted_prefix();
+      out.repartitions = ranks_->repartitions;
+      out.partitioned_at = ranks_->partitioned_at;
     }
     return out;
   }
@@ -185,6 +188,8 @@ class ExplicitStepper {
     if (ranks_ && !state.partition.empty()) {
       use_partition(BoxPartition<D>::from_ints(whole_grid_, state.partition));
       ranks_->migration.restore(state.sort_keys, state.sorted_prefix);
+      ranks_->repartitions = state.repartitions;
+      ranks_->partitioned_at = state.partitioned_at;
     }
   }
 

@@ -357,6 +357,8 @@ void write_run(Hdf5Writer& w, const RunCounters& run) {
   w.write("run/step_cpu", run.step_cpu);
   w.write("run/wall", run.wall);
   w.write("run/threads", std::int64_t{run.threads});
+  w.write("run/repartitions", std::int64_t{run.repartitions});
+  w.write("run/partitioned_at", std::int64_t{run.partitioned_at});
   write_pvd(w, "run/results_pvd", run.results);
   write_pvd(w, "run/domains_pvd", run.domains);
   write_solver_state(w, run);
@@ -488,6 +490,10 @@ void read_run(const Hdf5Reader& r, RunCounters& run) {
   run.step_cpu = r.number("run/step_cpu");
   run.wall = r.number("run/wall");
   run.threads = static_cast<int>(r.integer("run/threads"));
+  if (r.has("run/repartitions")) {  // written since 2026-12-08
+    run.repartitions = r.integer("run/repartitions");
+    run.partitioned_at = r.integer("run/partitioned_at");
+  }
   run.results = read_pvd(r, "run/results_pvd");
   run.domains = read_pvd(r, "run/domains_pvd");
   read_solver_state(r, run);
@@ -713,7 +719,7 @@ void append_particles(ParticleSet<D>& to, const ParticleSet<D>& from, const std:
 }
 
 /// A checkpoint of `written` ranks read on this run's other number of ranks (docs/scale-out.md §9):
-/// every rank reads every piece (a one-rank checkpoint: the whole file), the slab partition is
+/// every rank reads every piece (a one-rank checkpoint: the whole file), the boxes are
 /// balanced anew over the checkpoint's particles, and each rank keeps the particles of its cells
 /// in (sort key, id) order, which is the order in which every run, on any rank count, visits a
 /// brick's particles (BrickSchedule::order_arrivals); so the particles continue bit for bit, and
@@ -820,6 +826,7 @@ void read_on_this_rank(const std::filesystem::path& file, const json& input, Sim
       sim.time = r.number("simulation/time");
       sim.last_dt = r.number("simulation/last_dt");
       sim.step = r.integer("simulation/step");
+      run.partitioned_at = sim.step;  // the partition was made at this step
       return;
     }
     if (ranks == 1) {

@@ -51,6 +51,9 @@ struct RunCounters {
   std::vector<int> partition;
   std::vector<std::int64_t> sort_keys;
   std::size_t sorted_prefix = 0;
+  // solver.rebalance (docs/scale-out.md §10): the re-partitions so far and the step of the last
+  // one (0: the start), so that a restarted run re-partitions where the uninterrupted one does.
+  long repartitions = 0, partitioned_at = 0;
 };
 
 /// The piece of a decomposed run's checkpoint that rank `rank` writes at step `step`, in the
