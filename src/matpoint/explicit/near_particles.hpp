@@ -17,8 +17,9 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <numeric>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,7 @@
 #include "matpoint/parallel/bytes.hpp"
 #include "matpoint/parallel/communicator.hpp"
 #include "matpoint/particles/particle_set.hpp"
+#include "matpoint/particles/serial_order.hpp"
 
 namespace matpoint {
 
@@ -67,14 +69,26 @@ class NearParticles {
               const std::vector<Index>& keys, const std::vector<Vec<D>>* body, BandOf&& band_of) {
     const int me = comm.rank();
     const IndexBox<D> mine = band_of(me);
+    // The cells this rank's particles lie in, and their bounding box: only the ranks whose band
+    // meets it read any of them (a few neighbours, not every rank of a large run).
+    std::vector<std::array<int, D>> cells(own.size());
+    IndexBox<D> held;
+    held.begin.fill(std::numeric_limits<int>::max());
+    held.end.fill(std::numeric_limits<int>::min());
+    for (std::size_t p = 0; p < own.size(); ++p) {
+      cells[p] = grid.cell_coords(own.x[p]);
+      for (int a = 0; a < D; ++a)
+        held.begin[a] = std::min(held.begin[a], cells[p][a]),
+        held.end[a] = std::max(held.end[a], cells[p][a] + 1);
+    }
     std::vector<std::pair<int, IndexBox<D>>> neighbours;  // rank, band: those that read my particles
     for (int r = 0; r < comm.size(); ++r) {
       const IndexBox<D> theirs = band_of(r);
-      if (r != me && !theirs.empty()) neighbours.push_back({r, theirs});
+      if (r != me && !theirs.intersection(held).empty()) neighbours.push_back({r, theirs});
     }
     std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
     for (std::size_t p = 0; p < own.size(); ++p) {
-      const auto cell = grid.cell_coords(own.x[p]);
+      const auto& cell = cells[p];
       for (const auto& [r, theirs] : neighbours)
         if (theirs.contains(cell))
           bytes::append(out[static_cast<std::size_t>(r)], ghost_of(own, keys, body, p));
@@ -122,14 +136,13 @@ class NearParticles {
   void merge(const ParticleSet<D>& own, const std::vector<Index>& keys, const std::vector<Vec<D>>* body,
              const std::vector<GhostParticle<D>>& ghosts) {
     const std::size_t n_own = own.size(), n = n_own + ghosts.size();
-    const auto key_of = [&](std::size_t k) {
-      return k < n_own ? std::make_tuple(keys[k], own.id[k])
-                       : std::make_tuple(ghosts[k - n_own].key, ghosts[k - n_own].id);
-    };
+    const auto key_of = [&](std::size_t k) { return k < n_own ? keys[k] : ghosts[k - n_own].key; };
+    const auto id_of = [&](std::size_t k) { return k < n_own ? own.id[k] : ghosts[k - n_own].id; };
     std::vector<std::size_t> order(n);
     std::iota(order.begin(), order.end(), std::size_t{0});
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return key_of(a) < key_of(b); });
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return serially_before(key_of(a), id_of(a), key_of(b), id_of(b));
+    });
     has_body_ = body != nullptr;
     for (auto* array : {&near_.x, &near_.v, &near_.size0, &near_body_}) array->resize(n);
     for (auto* array : {&near_.F, &near_.stress}) array->resize(n);

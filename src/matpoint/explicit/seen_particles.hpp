@@ -21,6 +21,7 @@
 #include "matpoint/grid/index_box.hpp"
 #include "matpoint/parallel/bytes.hpp"
 #include "matpoint/parallel/communicator.hpp"
+#include "matpoint/particles/serial_order.hpp"
 
 namespace matpoint {
 
@@ -40,7 +41,7 @@ struct SeenParticle {
     return 0.5 * (F.transpose() * n).cwiseAbs().dot(size0);
   }
   [[nodiscard]] bool before(const SeenParticle& other) const {
-    return key != other.key ? key < other.key : id < other.id;
+    return serially_before(key, id, other.key, other.id);
   }
 };
 

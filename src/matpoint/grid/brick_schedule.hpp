@@ -19,6 +19,7 @@
 
 #include "matpoint/core/types.hpp"
 #include "matpoint/grid/grid.hpp"
+#include "matpoint/particles/serial_order.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -129,7 +130,7 @@ class BrickSchedule {
     std::sort(bricks.begin(), bricks.end());
     bricks.erase(std::unique(bricks.begin(), bricks.end()), bricks.end());
     const auto by_key = [&](std::int32_t a, std::int32_t b) {
-      return key[a] != key[b] ? key[a] < key[b] : id[a] < id[b];
+      return serially_before(key[a], id[a], key[b], id[b]);
     };
     for (const std::int32_t b : bricks)
       std::sort(order_.begin() + start_[b], order_.begin() + start_[b + 1], by_key);

@@ -17,6 +17,7 @@
 #include "matpoint/io/atomic_file.hpp"
 #include "matpoint/io/hdf5_file.hpp"
 #include "matpoint/parallel/box_partition.hpp"
+#include "matpoint/particles/serial_order.hpp"
 
 namespace matpoint {
 
@@ -791,7 +792,7 @@ void read_redistributed(const Hdf5Reader& manifest, const std::filesystem::path&
   for (std::size_t p = 0; p < all.size(); ++p)
     if (partition.owner_of_cell(cells[p]) == sim.comm.rank()) mine.push_back(p);
   std::sort(mine.begin(), mine.end(), [&](std::size_t a, std::size_t b) {
-    return keys[a] != keys[b] ? keys[a] < keys[b] : all.id[a] < all.id[b];
+    return serially_before(keys[a], all.id[a], keys[b], all.id[b]);
   });
   auto& ps = sim.particles;
   ps.state_stride = all.state_stride, ps.track_corners = all.track_corners;

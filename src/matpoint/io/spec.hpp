@@ -286,7 +286,7 @@ struct ImplicitSpec {
   } adaptive;
 };
 
-/// solver.rebalance: when a run on several MPI ranks cuts its slabs anew by particle count
+/// solver.rebalance: when a run on several MPI ranks cuts its boxes anew by particle count
 /// (docs/scale-out.md §10). The results do not depend on it: only the time they take.
 struct RebalanceSpec {
   bool enabled = true;

@@ -28,9 +28,6 @@ namespace matpoint {
 template <int D>
 class BoxPartition {
  public:
-  /// One rank owning every cell.
-  BoxPartition() = default;
-
   /// One rank owning every brick of the grid.
   static BoxPartition whole(const Grid<D>& grid) {
     BoxPartition out = of_grid(grid);
@@ -118,20 +115,13 @@ class BoxPartition {
     }
     return n;
   }
-  [[nodiscard]] int owner_of_brick(Index brick) const {
-    return owner_.empty() ? 0 : owner_[static_cast<std::size_t>(brick)];
-  }
+  [[nodiscard]] int owner_of_brick(Index brick) const { return owner_[static_cast<std::size_t>(brick)]; }
   [[nodiscard]] int owner_of_cell(const std::array<int, D>& cell) const {
-    return owner_.empty() ? 0 : owner_of_brick(brick_of_cell(cell));
+    return owner_of_brick(brick_of_cell(cell));
   }
 
   /// The cells rank r owns.
   [[nodiscard]] IndexBox<D> cells_of(int r) const {
-    if (boxes_.empty()) {
-      IndexBox<D> all;
-      all.end = cells_;
-      return all;
-    }
     const IndexBox<D>& bricks = bricks_of(r);
     if (bricks.empty()) return {};
     IndexBox<D> out;
@@ -169,6 +159,8 @@ class BoxPartition {
   }
 
  private:
+  BoxPartition() = default;  // see whole(), balanced() and from_ints()
+
   /// The grid's bricks, no ranks yet.
   static BoxPartition of_grid(const Grid<D>& grid) {
     BoxPartition out;

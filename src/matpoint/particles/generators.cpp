@@ -9,6 +9,7 @@
 #include "matpoint/grid/brick_schedule.hpp"
 #include "matpoint/mesh/triangle_pattern.hpp"
 #include "matpoint/particles/graded_generators.hpp"
+#include "matpoint/particles/serial_order.hpp"
 
 namespace matpoint {
 
@@ -278,8 +279,7 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles, std::vector<In
   for (std::size_t p = 0; p < n; ++p) {
     cell[p] = BrickSchedule<D>::brick_major_cell(grid, grid.cell_coords(particles.x[p]));
     lowest = std::min(lowest, cell[p]), highest = std::max(highest, cell[p]);
-    if (p > 0 && (cell[p] < cell[p - 1] || (cell[p] == cell[p - 1] && particles.id[p] < particles.id[p - 1])))
-      sorted = false;
+    if (p > 0 && serially_before(cell[p], particles.id[p], cell[p - 1], particles.id[p - 1])) sorted = false;
   }
   if (sorted) {
     if (sorted_cells != nullptr) *sorted_cells = std::move(cell);
