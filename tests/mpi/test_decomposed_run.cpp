@@ -502,6 +502,46 @@ TEST(DecomposedRun, ContactDisksWithLogisticNormalsOnBoxesEqualSerialRunBitwise)
   expect_equal_to_serial<FieldStencils<2, CpdiStencils<2, HatKernel, CpdiDomain::Parallelogram>>>(json, 500);
 }
 
+// The heat contact conductance on boxes (explicit/thermal_contact.hpp): the nodal contact areas
+// sum the GIMP domains of the particles of up to four ranks near a box corner, in the serial order
+// (explicit/near_particles.hpp); the left disk starts 100 K warmer.
+TEST(DecomposedRun, ContactDisksWithHeatConductanceOnBoxesEqualSerialRunBitwise) {
+  std::string json = kChannelDisks;
+  replace_text(
+      json, R"("E": 1000, "nu": 0.3)",
+      R"("E": 1000, "nu": 0.3, "heat_capacity": 1500, "conductivity": 0.1, "thermal_expansion": 6e-5)");
+  replace_text(json, R"("solver")",
+               R"("contact": { "law": "coulomb", "friction": 0.6, "normals": "mass_gradient",
+                                                   "separation": 0.5 },
+                                      "heat": { "initial_temperature": 300, "transfer": "flip",
+                                                "contact": "conductance", "contact_conductance": 1e3,
+                                                "body_temperatures": [ { "body": "left", "temperature": 400 } ] },
+                                      "solver")");
+  expect_equal_to_serial<FieldStencils<2, TensorStencils<2, QuadraticBSplineBasis>>>(json, 500);
+}
+
+// 3-D boxes cut along x too: 128 x 16 x 16 cells of 2 cm are 4 x 2 x 2 bricks, which two ranks cut
+// along x (at x = 1.28 m, through the left block) and four ranks then along z in each half; two
+// rubber blocks, offset in y and z, collide along x across the cut.
+TEST(DecomposedRun, BlocksOnBoxesCutAlongXEqualSerialRunBitwise) {
+  const std::string json = R"({
+    "grid": { "dim": 3, "min": [0, 0, 0], "max": [2.56, 0.32, 0.32], "cell_size": 0.02 },
+    "materials": [ { "name": "rubber", "model": "neo_hookean", "density": 1000, "E": 1e4, "nu": 0.3 } ],
+    "bodies": [
+      { "name": "left", "material": "rubber", "shape": { "type": "box", "min": [1.1, 0.06, 0.06], "max": [1.3, 0.26, 0.26] },
+        "particles_per_cell": 2, "velocity": [0.5, 0, 0] },
+      { "name": "right", "material": "rubber", "shape": { "type": "box", "min": [1.34, 0.08, 0.08], "max": [1.54, 0.28, 0.28] },
+        "particles_per_cell": 2, "velocity": [-0.5, 0, 0] } ],
+    "solver": { "scheme": "musl", "transfer": "flip", "basis": "bspline2", "courant": 0.5, "end_time": 1.0 }
+  })";
+  using Stencils = TensorStencils<3, QuadraticBSplineBasis>;
+  const auto boxes = boxes_of<3, Stencils>(json);
+  if (Communicator::world().size() > 1) {
+    EXPECT_EQ(boxes[0].end[0], 2) << "the first cut along x at brick column 2";
+  }
+  expect_equal_to_serial<Stencils, 3>(json, 100);
+}
+
 // A cube-like 3-D domain (bench/scaling.md: slabs run out of brick layers): 32^3 cells of 1/32 m
 // are 1 x 4 x 4 bricks (32 x 8 x 8 cells each), which two ranks cut along z and four ranks into
 // 2 x 2 boxes in y and z. A rubber ball thrown down and sideways bounces on the fixed floor z-

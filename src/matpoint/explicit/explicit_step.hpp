@@ -329,7 +329,7 @@ class ExplicitStepper {
   /// first agreement). Every node array and node
   /// list follows it: the grid's fields and scratch, the velocity and thermal conditions, the
   /// contact's and the stencils' node counts, the frictional heat that waits for the next step,
-  /// the owned range and the hand-off's lists (rebuilt at the next agree_reach). Called when the
+  /// the owned nodes and the hand-off's lists (rebuilt at the next agree_reach). Called when the
   /// partition or the agreed reach changes, between steps or right after the stencils' evaluation
   /// (which is then repeated), never while a node array holds a step's values.
   void fit_window() {
@@ -396,28 +396,24 @@ class ExplicitStepper {
     if (heat_.active()) heat_.count_only(s_);
   }
 
-  /// Load balance (docs/scale-out.md §10), at a re-sort: the particle count per brick of all ranks
-  /// from one reduction; when the busiest rank holds more than solver.rebalance.imbalance times
-  /// the mean, the boxes are cut anew where the particles lie and the particles move to
-  /// their new ranks (the migration, with any destination). Arrivals keep their sort keys, so the
-  /// storage order, and with it every result, stays the serial run's.
+  /// Load balance (docs/scale-out.md §10), at a re-sort: when the busiest rank holds more than
+  /// solver.rebalance.imbalance times the mean particle count (a max and a sum over the ranks),
+  /// the particle count per brick of all ranks (one reduction of a value per brick) gives new
+  /// boxes where the particles lie, and the particles move to their new ranks (the migration, with
+  /// any destination). Arrivals keep their sort keys, so the storage order, and with it every
+  /// result, stays the serial run's.
   void rebalance() {
     const RebalanceSpec& spec = s_.solver.rebalance;
     if (!spec.enabled || s_.step - ranks_->partitioned_at < spec.min_steps) return;
+    const long own = static_cast<long>(s_.particles.size());
+    const long busiest = s_.comm.max(own), total = s_.comm.sum(own);
+    if (static_cast<double>(busiest) <= spec.imbalance * static_cast<double>(total) / s_.comm.size()) return;
+    ranks_->partitioned_at = s_.step;  // also when the bricks allow no better cut: check again later
     BoxPartition<D>& partition = ranks_->partition;
     std::vector<double> count(partition.brick_count(), 0.0);
     for (const auto& x : s_.particles.x)
       count[static_cast<std::size_t>(partition.brick_of_cell(s_.grid.cell_coords(x)))] += 1.0;
     s_.comm.sum(count);  // particle counts: exact in doubles, the same on every rank
-    std::vector<double> on_rank(static_cast<std::size_t>(s_.comm.size()), 0.0);
-    double total = 0.0;
-    for (std::size_t b = 0; b < count.size(); ++b) {
-      on_rank[static_cast<std::size_t>(partition.owner_of_brick(static_cast<Index>(b)))] += count[b];
-      total += count[b];
-    }
-    const double busiest = *std::max_element(on_rank.begin(), on_rank.end());
-    if (busiest <= spec.imbalance * total / s_.comm.size()) return;
-    ranks_->partitioned_at = s_.step;  // also when the bricks allow no better cut: check again later
     std::vector<std::size_t> whole(count.size());
     for (std::size_t b = 0; b < count.size(); ++b) whole[b] = static_cast<std::size_t>(count[b]);
     auto cut = BoxPartition<D>::balanced(whole_grid_, whole, s_.comm.size());

@@ -83,7 +83,7 @@ int ghost_layers(ShapeKind shape);
 
 /// Builds grid, particles (cell-sorted, initial stress from F = I), materials and conditions.
 /// Throws InputError for bodies that produce no particle. `comm` with several ranks: a decomposed
-/// explicit run, where each rank generates only its slab's particles (a collective).
+/// explicit run, where each rank generates only its box's particles (a collective).
 template <int D>
 Simulation<D> build_simulation(const Spec& spec, const Communicator& comm = {});
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <random>
 
 #include "matpoint/grid/brick_schedule.hpp"
@@ -269,6 +270,39 @@ std::size_t generate_body(const BodySpec& body, int body_index, const MaterialSp
   return emit.generated();
 }
 
+namespace {
+
+/// The permutation that orders particles by (cell, id), cell[p] in [lowest, highest]: the serial
+/// storage order (docs/scale-out.md §6), by id within a cell so that it depends on where the
+/// particles are and not on how they were stored before (on any number of ranks, once particles
+/// migrate). A counting sort over the cells [lowest, highest] when they are not many more than the
+/// particles (a serial run, a rank's slab of brick layers); a comparison sort when they are (a
+/// rank's box cut along x or y spans whole rows of the brick-major numbering, mostly other ranks'
+/// cells, e.g. 80 times its own at 1024 ranks in 3-D). Both give the same order.
+std::vector<Index> order_by_cell_and_id(const std::vector<Index>& cell, Index lowest, Index highest,
+                                        const std::vector<long>& id) {
+  const std::size_t n = cell.size();
+  std::vector<Index> order(n);
+  const Index cell_count = highest - lowest + 1;
+  if (cell_count > 8 * static_cast<Index>(n) + 65536) {
+    std::iota(order.begin(), order.end(), Index{0});
+    std::sort(order.begin(), order.end(),
+              [&](Index a, Index b) { return serially_before(cell[a], id[a], cell[b], id[b]); });
+    return order;
+  }
+  std::vector<Index> start(cell_count + 1, 0);
+  for (const Index c : cell) ++start[c - lowest + 1];
+  for (Index c = 0; c < cell_count; ++c) start[c + 1] += start[c];
+  for (std::size_t p = 0; p < n; ++p) order[start[cell[p] - lowest]++] = static_cast<Index>(p);
+  // After the placement loop start[c] is the end of cell c.
+  const auto by_id = [&id](Index a, Index b) { return id[a] < id[b]; };
+  for (Index c = 0, begin = 0; c < cell_count; begin = start[c], ++c)
+    if (start[c] - begin > 1) std::sort(order.begin() + begin, order.begin() + start[c], by_id);
+  return order;
+}
+
+}  // namespace
+
 template <int D>
 void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles, std::vector<Index>* sorted_cells) {
   const std::size_t n = particles.size();
@@ -285,26 +319,12 @@ void sort_by_cell(const Grid<D>& grid, ParticleSet<D>& particles, std::vector<In
     if (sorted_cells != nullptr) *sorted_cells = std::move(cell);
     return;
   }
-  // A counting sort over the cells [lowest, highest] that hold particles: a rank of a decomposed
-  // run counts over its own slab (its particles' cells, brick-major), not over the whole grid.
-  const Index cell_count = highest - lowest + 1;
-  std::vector<Index> start(cell_count + 1, 0);
-  for (auto& c : cell) ++start[(c -= lowest) + 1];
-  for (Index c = 0; c < cell_count; ++c) start[c + 1] += start[c];
-  std::vector<Index> order(n);
-  for (std::size_t p = 0; p < n; ++p) order[start[cell[p]]++] = static_cast<Index>(p);
-  // Within a cell by id, so that the order depends on where the particles are and not on how they
-  // were stored before: on any number of ranks, once particles migrate (docs/scale-out.md §6).
-  // After the placement loop start[c] is the end of cell c.
-  const auto by_id = [&particles](Index a, Index b) { return particles.id[a] < particles.id[b]; };
-  for (Index c = 0, begin = 0; c < cell_count; begin = start[c], ++c)
-    if (start[c] - begin > 1) std::sort(order.begin() + begin, order.begin() + start[c], by_id);
-
+  const std::vector<Index> order = order_by_cell_and_id(cell, lowest, highest, particles.id);
   for_each_array(particles,
                  [&order](const char*, auto& array, std::size_t count) { permute(order, array, count); });
   if (sorted_cells != nullptr) {
     sorted_cells->resize(n);
-    for (std::size_t q = 0; q < n; ++q) (*sorted_cells)[q] = cell[order[q]] + lowest;
+    for (std::size_t q = 0; q < n; ++q) (*sorted_cells)[q] = cell[order[q]];
   }
 }
 

@@ -12,7 +12,7 @@
 namespace matpoint {
 
 /// Which generated particles a set stores, by position (a rank of a decomposed run: those in its
-/// slab); empty: every one.
+/// box); empty: every one.
 template <int D>
 using KeepParticle = std::function<bool(const Vec<D>&)>;
 

@@ -71,7 +71,8 @@ class ParticleBins {
     });
   }
 
-  /// The particles of one cell (flat user-cell index of the whole grid, x fastest; in the box).
+  /// The particles of one cell (flat user-cell index of the whole grid, x fastest); none for a
+  /// cell outside the binned box (a rank without cells bins none).
   template <class Fn>
   void for_each_in_cell(Index c, Fn&& fn) const {
     std::array<int, D> ijk{};
@@ -79,6 +80,7 @@ class ParticleBins {
       ijk[a] = static_cast<int>(c % grid_->cells[a]);
       c /= grid_->cells[a];
     }
+    if (!box_.contains(ijk)) return;
     const Index local = local_index(ijk);
     visit(local, local, fn);
   }
