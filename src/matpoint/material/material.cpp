@@ -5,6 +5,8 @@
 #include <type_traits>
 
 #include "matpoint/core/errors.hpp"
+#include "matpoint/core/lanes.hpp"
+#include "matpoint/material/neo_hookean_lanes.hpp"
 
 namespace matpoint {
 
@@ -45,6 +47,46 @@ bool wave_speed_certainly_below(const NeoHookean& m, const Mat<3>& F, double J, 
   const double e21 = -B(2, 1) + l20 * B(1, 0);  // A21 - l20 d0 l10
   const double d2 = (T - B(2, 2)) + l20 * B(2, 0) - e21 * e21 / d1;
   return d2 > 0.0;
+}
+
+/// The stress (sigma_zz in 2-D) and the running maximum wave speed of the kLanes neo-Hookean
+/// particles from `first` through the lanes, as update_stress's per-particle code forms them, when
+/// all are of material `index` with det F > 0 and a finite stress results; false (nothing written)
+/// otherwise, and the caller updates them one by one (which reports the failures). In 3-D the
+/// wave speeds follow particle by particle (wave_speed_certainly_below skips most).
+template <int D>
+bool update_stress_lanes(const NeoHookean& model, int index, ParticleSet<D>& particles, std::ptrdiff_t first,
+                         double& fastest) {
+  for (std::ptrdiff_t p = first; p < first + kLanes; ++p)
+    if (particles.material[p] != index) return false;
+  const LaneMatrix<D> F = LaneMatrix<D>::load(&particles.F[first]);
+  const Lanes J = F.determinant();
+  if (!stdx::all_of(J > 0.0)) return false;
+  Lanes sigma_zz, speed;
+  LaneMatrix<D> sigma;
+  if constexpr (D == 2) {
+    sigma = neo_hookean_stress_and_wave_speed_lanes(model, F, sigma_zz, speed);
+  } else {
+    const Lanes lnJ = model.volumetric == NeoHookeanVolumetric::LogJ ? log_per_lane(J) : Lanes(0.0);
+    sigma = neo_hookean_stress_lanes<D>(model, J, lnJ, F * F.transposed(), sigma_zz);
+  }
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j)
+      if (!stdx::all_of(stdx::isfinite(sigma(i, j)))) return false;
+  sigma.store(&particles.stress[first]);
+  if constexpr (D == 2) {
+    sigma_zz.copy_to(&particles.stress_zz[first], stdx::element_aligned);
+    for (int lane = 0; lane < kLanes; ++lane) fastest = std::max(fastest, static_cast<double>(speed[lane]));
+  } else {
+    for (int lane = 0; lane < kLanes; ++lane) {
+      const Mat<D>& F_p = particles.F[first + lane];
+      double c = 0.0;
+      if (!wave_speed_certainly_below(model, F_p, static_cast<double>(J[lane]), fastest))
+        c = model.wave_speed_at<D>(F_p);
+      fastest = std::max(fastest, c);
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -181,14 +223,14 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
             model.template stress_and_wave_speed<D>(Mat<D>{}, x, x);
           };
           if constexpr (!kSpeedWithState && !kSpeedAtF) fastest = std::max(fastest, c);
-#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : first_bad, fastest)
-          for (std::ptrdiff_t p = 0; p < n; ++p) {
-            if (particles.material[p] != static_cast<int>(m)) continue;
+          // One particle's update; first_bad and fastest are the calling thread's reduction copies.
+          auto update_particle = [&](std::ptrdiff_t p, long& first_bad, double& fastest) {
+            if (particles.material[p] != static_cast<int>(m)) return;
             const Mat<D>& F = particles.F[p];
             const double J = F.determinant();
             if (!(J > 0.0)) {
               first_bad = std::max(first_bad, static_cast<long>(n - p));  // max of (n - p) = min p
-              continue;
+              return;
             }
             const double q = av.active() ? av.pressure(particles.mass[p] / (particles.volume0[p] * J),
                                                        particles.L[p].trace(), c)
@@ -219,7 +261,23 @@ long update_stress(const std::vector<Material>& materials, ParticleSet<D>& parti
             if constexpr (kSpeedWithState || kSpeedAtF) fastest = std::max(fastest, speed);
             if constexpr (D == 2) particles.stress_zz[p] = zz;
             if (!particles.stress[p].allFinite()) first_bad = std::max(first_bad, static_cast<long>(n - p));
+          };
+          // Neo-Hookean without artificial viscosity: kLanes particles at once where a batch is all
+          // of this material (neo_hookean_lanes.hpp; bitwise the per-particle results).
+          constexpr bool kLanesPath = D >= 2 && std::is_same_v<Model, NeoHookean>;
+          const std::ptrdiff_t batches = kLanesPath && !av.active() ? n / kLanes : 0;
+          if constexpr (kLanesPath) {
+#pragma omp parallel for schedule(static) if (n > kParallelMinimum) reduction(max : first_bad, fastest)
+            for (std::ptrdiff_t b = 0; b < batches; ++b) {
+              const std::ptrdiff_t first = b * kLanes;
+              if (!update_stress_lanes(model, static_cast<int>(m), particles, first, fastest))
+                for (std::ptrdiff_t p = first; p < first + kLanes; ++p)
+                  update_particle(p, first_bad, fastest);
+            }
           }
+          const std::ptrdiff_t rest = batches * kLanes;
+#pragma omp parallel for schedule(static) if (n - rest > kParallelMinimum) reduction(max : first_bad, fastest)
+          for (std::ptrdiff_t p = rest; p < n; ++p) update_particle(p, first_bad, fastest);
         },
         materials[m]);
   }

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "matpoint/core/lanes.hpp"
 #include "matpoint/shape/kernels.hpp"
 
 namespace matpoint {
@@ -29,6 +30,19 @@ struct LinearBasis {
     i0 = i0 < 0 ? 0 : (i0 >= cells ? cells - 1 : i0);  // a particle on the max face uses the last cell
     HatKernel::cell_weights(xi - i0, w, dw);
     return i0;
+  }
+  /// evaluate() for kLanes coordinates whose cells are all inside the grid (else false, nothing
+  /// set, and the caller uses evaluate()): the same operations per lane (core/lanes.hpp).
+  static bool evaluate_lanes(const Lanes& xi, int cells, Lanes* w, Lanes* dw, Lanes& lowest) {
+    const Lanes i0 = stdx::floor(xi);                                 // floor_to_int(xi), exact in double
+    if (!stdx::all_of(i0 >= 0.0 && i0 <= cells - 1.0)) return false;  // the clamp would act (or NaN)
+    const Lanes r = xi - i0;
+    w[0] = 1.0 - r;
+    w[1] = r;
+    dw[0] = Lanes(-1.0);
+    dw[1] = Lanes(1.0);
+    lowest = i0;
+    return true;
   }
 };
 
@@ -63,6 +77,23 @@ struct QuadraticBSplineBasis {
       i0 = cells - 2;
     }
     return i0;
+  }
+  /// evaluate() for kLanes coordinates whose three nodes are all inside the grid (else false,
+  /// nothing set, and the caller uses evaluate(), which folds): the same operations per lane.
+  static bool evaluate_lanes(const Lanes& xi, int cells, Lanes* w, Lanes* dw, Lanes& lowest) {
+    const Lanes centre = stdx::floor(xi + 0.5);  // i0 + 1, exact in double
+    // No fold: i0 >= 0 and i0 + 2 <= cells (false for a NaN too).
+    if (!stdx::all_of(centre >= 1.0 && centre <= cells - 1.0)) return false;
+    const Lanes r = xi - centre;
+    const Lanes a = 0.5 - r, b = 0.5 + r;
+    w[0] = 0.5 * a * a;
+    w[1] = 0.75 - r * r;
+    w[2] = 0.5 * b * b;
+    dw[0] = -a;
+    dw[1] = -2.0 * r;
+    dw[2] = b;
+    lowest = centre - 1.0;
+    return true;
   }
 
  private:

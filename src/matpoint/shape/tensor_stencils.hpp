@@ -83,6 +83,15 @@ struct TensorStencils {
         }
     }
   }
+
+ private:
+  /// Particle p's stencil and brick; below / above: the thread's running reach.
+  void evaluate_one(const Grid<D>& grid, const ParticleSet<D>& particles, std::ptrdiff_t p, int& below,
+                    int& above);
+  /// The kLanes particles from `first` at once (Basis::evaluate_lanes); false, with none of them
+  /// finished, when a stencil needs the edge fold or a coordinate is not finite.
+  bool evaluate_lanes(const Grid<D>& grid, const ParticleSet<D>& particles, std::ptrdiff_t first, int& below,
+                      int& above);
 };
 
 template <int D, class Basis>
@@ -93,26 +102,75 @@ void TensorStencils<D, Basis>::evaluate(const Grid<D>& grid, const ParticleSet<D
   slope.resize(n);
   bricks.reset(grid, particles.size());
   int below = 0, above = 0;  // farthest stencil node below / above a particle's cell, in nodes
+  // A point basis with evaluate_lanes takes kLanes particles at once where their stencils need no
+  // edge fold (bitwise the scalar result, core/lanes.hpp); the rest go one by one.
+  constexpr bool kLanesPath = requires(const Lanes& xi, Lanes* w, Lanes& lowest) {
+    Basis::evaluate_lanes(xi, 0, w, w, lowest);
+  };
+  const std::ptrdiff_t batches = kLanesPath ? n / kLanes : 0;
 #pragma omp parallel for schedule(static) reduction(max : below, above) if (n > kParallelMinimum)
-  for (std::ptrdiff_t p = 0; p < n; ++p) {
-    std::array<int, D> lowest{}, cell{};
-    for (int a = 0; a < D; ++a) {
-      const double xi = (particles.x[p][a] - grid.origin[a]) / grid.h[a];
-      if constexpr (Basis::domain == DomainWidth::None)
-        lowest[a] = Basis::evaluate(xi, grid.cells[a], &weight[p][a * W], &slope[p][a * W]);
-      else
-        lowest[a] = Basis::evaluate(xi, gimp_half_width<Basis, D>(grid, particles, p, a), grid.cells[a],
-                                    &weight[p][a * W], &slope[p][a * W]);
-      const double inv_h = 1.0 / grid.h[a];
-      for (int k = 0; k < W; ++k) slope[p][a * W + k] *= inv_h;
-      cell[a] = std::clamp(floor_to_int(xi), 0, grid.cells[a] - 1);  // as Grid::cell_coordinate
-      below = std::max(below, cell[a] - lowest[a]);
-      above = std::max(above, lowest[a] + W - 1 - cell[a]);
-    }
-    base[p] = grid.node_index(lowest);
-    bricks.assign(p, cell);
+  for (std::ptrdiff_t b = 0; b < batches; ++b) {
+    if constexpr (kLanesPath)
+      if (evaluate_lanes(grid, particles, b * kLanes, below, above)) continue;
+    for (std::ptrdiff_t p = b * kLanes; p < (b + 1) * kLanes; ++p)
+      evaluate_one(grid, particles, p, below, above);
   }
+  const std::ptrdiff_t rest = batches * kLanes;
+#pragma omp parallel for schedule(static) reduction(max : below, above) if (n - rest > kParallelMinimum)
+  for (std::ptrdiff_t p = rest; p < n; ++p) evaluate_one(grid, particles, p, below, above);
   bricks.finish(below, above);
+}
+
+template <int D, class Basis>
+void TensorStencils<D, Basis>::evaluate_one(const Grid<D>& grid, const ParticleSet<D>& particles,
+                                            std::ptrdiff_t p, int& below, int& above) {
+  std::array<int, D> lowest{}, cell{};
+  for (int a = 0; a < D; ++a) {
+    const double xi = (particles.x[p][a] - grid.origin[a]) / grid.h[a];
+    if constexpr (Basis::domain == DomainWidth::None)
+      lowest[a] = Basis::evaluate(xi, grid.cells[a], &weight[p][a * W], &slope[p][a * W]);
+    else
+      lowest[a] = Basis::evaluate(xi, gimp_half_width<Basis, D>(grid, particles, p, a), grid.cells[a],
+                                  &weight[p][a * W], &slope[p][a * W]);
+    const double inv_h = 1.0 / grid.h[a];
+    for (int k = 0; k < W; ++k) slope[p][a * W + k] *= inv_h;
+    cell[a] = std::clamp(floor_to_int(xi), 0, grid.cells[a] - 1);  // as Grid::cell_coordinate
+    below = std::max(below, cell[a] - lowest[a]);
+    above = std::max(above, lowest[a] + W - 1 - cell[a]);
+  }
+  base[p] = grid.node_index(lowest);
+  bricks.assign(p, cell);
+}
+
+template <int D, class Basis>
+bool TensorStencils<D, Basis>::evaluate_lanes(const Grid<D>& grid, const ParticleSet<D>& particles,
+                                              std::ptrdiff_t first, int& below, int& above) {
+  Lanes w[D][W], dw[D][W], lowest[D], cell[D];
+  for (int a = 0; a < D; ++a) {
+    const Lanes x([&](auto lane) { return particles.x[first + lane][a]; });
+    const Lanes xi = (x - grid.origin[a]) / grid.h[a];
+    if (!Basis::evaluate_lanes(xi, grid.cells[a], w[a], dw[a], lowest[a])) return false;
+    const double inv_h = 1.0 / grid.h[a];
+    for (int k = 0; k < W; ++k) dw[a][k] *= inv_h;
+    cell[a] = stdx::floor(xi);  // inside the grid: no clamp acts (evaluate_lanes checked)
+  }
+  for (int lane = 0; lane < kLanes; ++lane) {
+    const std::ptrdiff_t p = first + lane;
+    std::array<int, D> low{}, at{};
+    for (int a = 0; a < D; ++a) {
+      for (int k = 0; k < W; ++k) {
+        weight[p][a * W + k] = w[a][k][lane];
+        slope[p][a * W + k] = dw[a][k][lane];
+      }
+      low[a] = static_cast<int>(lowest[a][lane]);
+      at[a] = std::clamp(static_cast<int>(cell[a][lane]), 0, grid.cells[a] - 1);
+      below = std::max(below, at[a] - low[a]);
+      above = std::max(above, low[a] + W - 1 - at[a]);
+    }
+    base[p] = grid.node_index(low);
+    bricks.assign(p, at);
+  }
+  return true;
 }
 
 }  // namespace matpoint
