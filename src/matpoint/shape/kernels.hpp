@@ -75,16 +75,21 @@ struct QuadraticKernel {
   }
   static int first_node(double xi) { return floor_to_int(xi + 0.5) - 1; }
   static int point(double xi, double* w, double* dw) {
-    const int i0 = first_node(xi);   // nodes i0 .. i0 + 2
-    const double r = xi - (i0 + 1);  // in [-1/2, 1/2)
-    const double a = 0.5 - r, b = 0.5 + r;
+    const int i0 = first_node(xi);  // nodes i0 .. i0 + 2
+    factors(xi - (i0 + 1), w, dw);
+    return i0;
+  }
+  /// The weights and slopes (per unit xi) of nodes i0 .. i0 + 2 at r = xi - (i0 + 1) in [-1/2, 1/2),
+  /// for a double or for the lanes of several particles (core/lanes.hpp).
+  template <class T>
+  static void factors(const T& r, T* w, T* dw) {
+    const T a = 0.5 - r, b = 0.5 + r;
     w[0] = 0.5 * a * a;
     w[1] = 0.75 - r * r;
     w[2] = 0.5 * b * b;
     dw[0] = -a;
     dw[1] = -2.0 * r;
     dw[2] = b;
-    return i0;
   }
 };
 

@@ -60,15 +60,8 @@ struct QuadraticBSplineBasis {
   static constexpr DomainWidth domain = DomainWidth::None;
 
   static int evaluate(double xi, int cells, double* w, double* dw) {
-    int i0 = floor_to_int(xi + 0.5) - 1;  // nodes i0, i0+1, i0+2
-    const double r = xi - (i0 + 1);       // in [-1/2, 1/2)
-    const double a = 0.5 - r, b = 0.5 + r;
-    w[0] = 0.5 * a * a;
-    w[1] = 0.75 - r * r;
-    w[2] = 0.5 * b * b;
-    dw[0] = -a;
-    dw[1] = -2.0 * r;
-    dw[2] = b;
+    int i0 = QuadraticKernel::first_node(xi);  // nodes i0, i0+1, i0+2
+    QuadraticKernel::factors(xi - (i0 + 1), w, dw);
     if (i0 < 0) {  // node -1 missing: nodes 0, 1, 2 carry (phi_0 + 2 phi_-1, phi_1 - phi_-1, 0)
       fold(w, dw, 0, 1, 2);
       i0 = 0;
@@ -84,14 +77,7 @@ struct QuadraticBSplineBasis {
     const Lanes centre = stdx::floor(xi + 0.5);  // i0 + 1, exact in double
     // No fold: i0 >= 0 and i0 + 2 <= cells (false for a NaN too).
     if (!stdx::all_of(centre >= 1.0 && centre <= cells - 1.0)) return false;
-    const Lanes r = xi - centre;
-    const Lanes a = 0.5 - r, b = 0.5 + r;
-    w[0] = 0.5 * a * a;
-    w[1] = 0.75 - r * r;
-    w[2] = 0.5 * b * b;
-    dw[0] = -a;
-    dw[1] = -2.0 * r;
-    dw[2] = b;
+    QuadraticKernel::factors(Lanes(xi - centre), w, dw);
     lowest = centre - 1.0;
     return true;
   }
