@@ -110,8 +110,9 @@ void expect_neo_hookean_lanes_match_scalar(NeoHookeanVolumetric form) {
     Mat<2> F[kLanes];
     for (auto& f : F) f = random_deformation<2>(rng, 0.3);
     Lanes sigma_zz, speed;
+    const LaneMatrix<2> lanes_F = LaneMatrix<2>::load(F);
     const LaneMatrix<2> sigma =
-        neo_hookean_stress_and_wave_speed_lanes(model, LaneMatrix<2>::load(F), sigma_zz, speed);
+        neo_hookean_stress_and_wave_speed_lanes(model, lanes_F, lanes_F.determinant(), sigma_zz, speed);
     for (int lane = 0; lane < kLanes; ++lane) {
       double zz = 0.0, c = 0.0;
       const Mat<2> expected = model.stress_and_wave_speed<2>(F[lane], zz, c);

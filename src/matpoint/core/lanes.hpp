@@ -7,7 +7,7 @@
 // so a particle's result does not depend on whether it went through the lanes or the scalar path
 // (the remainder, a batch with a mixed material) nor on the thread count. Eigen's fixed-size
 // products and sums reduce by halves: a0 + a1 for two terms, a0 + (a1 + a2) for three
-// (Redux.h, redux_novec_unroller); `sum_in_eigen_order` repeats that; tests/core/test_lanes.cpp
+// (Redux.h, redux_novec_unroller); `sum_in_eigen_order` repeats that; tests/unit/test_lanes.cpp
 // compares both paths with ==.
 #pragma once
 

@@ -65,7 +65,7 @@ bool update_stress_lanes(const NeoHookean& model, int index, ParticleSet<D>& par
   Lanes sigma_zz, speed;
   LaneMatrix<D> sigma;
   if constexpr (D == 2) {
-    sigma = neo_hookean_stress_and_wave_speed_lanes(model, F, sigma_zz, speed);
+    sigma = neo_hookean_stress_and_wave_speed_lanes(model, F, J, sigma_zz, speed);
   } else {
     const Lanes lnJ = model.volumetric == NeoHookeanVolumetric::LogJ ? log_per_lane(J) : Lanes(0.0);
     sigma = neo_hookean_stress_lanes<D>(model, J, lnJ, F * F.transposed(), sigma_zz);

@@ -35,11 +35,11 @@ template <int D>
 }
 
 /// NeoHookean::stress_and_wave_speed<2>: the stress, sigma_zz and the wave speed c of kLanes 2-D
-/// deformation gradients.
+/// deformation gradients F with determinants J (the caller's, which tested J > 0).
 [[nodiscard]] inline LaneMatrix<2> neo_hookean_stress_and_wave_speed_lanes(const NeoHookean& m,
                                                                            const LaneMatrix<2>& F,
-                                                                           Lanes& sigma_zz, Lanes& c) {
-  const Lanes J = F.determinant();
+                                                                           const Lanes& J, Lanes& sigma_zz,
+                                                                           Lanes& c) {
   const bool log_j = m.volumetric == NeoHookeanVolumetric::LogJ;
   const Lanes lnJ = log_j ? log_per_lane(J) : Lanes(0.0);
   const LaneMatrix<2> B = F * F.transposed();
